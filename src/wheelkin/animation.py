@@ -1,0 +1,110 @@
+"""Animations that play in a static HTML page, with stable element ids.
+
+Matplotlib's :meth:`~matplotlib.animation.Animation.to_jshtml` embeds every frame as a PNG
+and adds a small player (play, pause, step, a frame slider) that runs in the browser without a
+kernel. It names its HTML elements with a random UUID, so re-executing a notebook would change
+the stored output every time, and its ``<img>`` has no ``alt`` text. :func:`to_html` fixes
+both: the id is derived from a name you give, and the image carries your alt text.
+
+Use :func:`show` in a notebook cell::
+
+    anim = FuncAnimation(fig, update, frames=40)
+    show(anim, name="rover-sweep", alt="The rover's wheels steering from left to right",
+         caption="Sweeping the steering command from -100 to 100.")
+"""
+
+from __future__ import annotations
+
+import hashlib
+import html as _html
+import re
+
+import matplotlib.pyplot as plt
+from matplotlib.animation import Animation
+
+__all__ = ["MAX_BYTES", "show", "to_html"]
+
+#: Budget for one animation's HTML (bytes). A page must stay under 3 MB in all.
+MAX_BYTES = 2_000_000
+
+_UUID = re.compile(r"_anim_img([0-9a-f]{32})")
+
+
+def stable_id(name: str) -> str:
+    """A 32-hex-digit id derived from ``name`` (the same name always gives the same id).
+
+    >>> stable_id("demo")
+    'fe01ce2a7fbac8fafaed7c982a04e229'
+    """
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"name must be a non-empty string, got {name!r}")
+    return hashlib.md5(name.encode()).hexdigest()
+
+
+def to_html(
+    anim: Animation,
+    *,
+    name: str,
+    alt: str,
+    caption: str | None = None,
+    fps: float | None = None,
+    default_mode: str = "loop",
+    max_bytes: int = MAX_BYTES,
+) -> str:
+    """Render ``anim`` to self-contained HTML with a stable id and alt text.
+
+    Parameters
+    ----------
+    anim : matplotlib.animation.Animation
+        The animation. Its figure is closed afterwards, so it is not shown a second time.
+    name : str
+        Unique on the page; the element ids are derived from it.
+    alt : str
+        Alternative text for the frames (what a reader who cannot see them should know).
+    caption : str, optional
+        Shown under the player, in a ``<figcaption>``.
+    fps : float, optional
+        Frames per second of playback (default: from the animation's interval).
+    default_mode : {"loop", "once", "reflect"}
+        What the player does at the last frame.
+    max_bytes : int
+        Raise ``ValueError`` if the HTML is larger (keeps pages within their size budget).
+    """
+    if not isinstance(anim, Animation):
+        raise ValueError(f"anim must be a matplotlib Animation, got {type(anim).__name__}")
+    if not isinstance(alt, str) or not alt.strip():
+        raise ValueError("alt must be a non-empty description of the animation")
+    if default_mode not in ("loop", "once", "reflect"):
+        raise ValueError(f"default_mode must be 'loop', 'once' or 'reflect', got {default_mode!r}")
+    new_id = stable_id(name)
+    try:
+        raw = anim.to_jshtml(fps=fps, embed_frames=True, default_mode=default_mode)
+    finally:
+        plt.close(anim._fig)
+    match = _UUID.search(raw)
+    if match is None:  # pragma: no cover - matplotlib changed its template
+        raise RuntimeError("could not find the player's element id in matplotlib's HTML")
+    out = raw.replace(match.group(1), new_id)
+    out = out.replace(
+        f'<img id="_anim_img{new_id}">',
+        f'<img id="_anim_img{new_id}" alt="{_html.escape(alt, quote=True)}">',
+    )
+    if caption:
+        out = (
+            f'<figure class="wheelkin-animation" id="fig-{_html.escape(name)}">{out}'
+            f"<figcaption>{_html.escape(caption)}</figcaption></figure>"
+        )
+    size = len(out.encode())
+    if size > max_bytes:
+        raise ValueError(
+            f"animation {name!r} is {size / 1e6:.2f} MB, over max_bytes={max_bytes / 1e6:.2f} MB: "
+            "use fewer frames, a smaller figure or a lower dpi"
+        )
+    return out
+
+
+def show(anim: Animation, **kwargs):
+    """Display ``anim`` in a notebook as a kernel-free player (see :func:`to_html`)."""
+    from IPython.display import HTML
+
+    return HTML(to_html(anim, **kwargs))

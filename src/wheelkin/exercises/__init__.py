@@ -1,0 +1,313 @@
+"""Exercises with automatic checks that explain what is wrong.
+
+A student writes a function in a notebook cell; :func:`check` runs it on well-chosen cases
+against the library's answer and reports, in plain words, the first thing that is wrong: the
+function is not written yet, it raised, it returned the wrong shape or a NaN, it has the wrong
+sign, the wheels swapped, the wrong units, or a mistake specific to the exercise. It never
+shows a traceback and never raises: a notebook cell that calls it always runs.
+
+Each chapter registers its exercises in a module of this package (``wheelkin.exercises.rover``
+and so on); :func:`get` finds one by name, loading those modules on first use.
+
+>>> def ref(x):
+...     return 2.0 * x
+>>> ex = Exercise("demo.double", "Double a number.", ref, [Case((1.0,)), Case((3.0,))],
+...               register=False)
+>>> ex.check(lambda x: 2 * x).passed
+True
+>>> print(ex.check(lambda x: -2 * x).message)
+✘ demo.double: for x=1 you returned -2, expected 2: the sign is wrong.
+>>> print(ex.check(lambda x: 1 / 0).message)
+✘ demo.double: for x=1 your function raised ZeroDivisionError: division by zero
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import itertools
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = [
+    "UNIT_FACTORS",
+    "Case",
+    "CheckResult",
+    "Exercise",
+    "all_exercises",
+    "check",
+    "get",
+]
+
+#: Ratios (student / expected) that betray a unit mix-up, with the words that explain it.
+UNIT_FACTORS: tuple[tuple[float, str], ...] = (
+    (1000.0, "a factor of 1000 too large: millimetres for metres, or mrad for rad?"),
+    (1e-3, "a factor of 1000 too small: metres for millimetres, or rad for mrad?"),
+    (25.4, "a factor of 25.4 too large: millimetres where inches were meant?"),
+    (1 / 25.4, "a factor of 25.4 too small: inches where millimetres were meant?"),
+    (0.0254, "a factor of 0.0254: metres where inches were meant?"),
+    (1 / 0.0254, "a factor of 39.37: inches where metres were meant?"),
+    (12.0, "a factor of 12: inches where feet were meant?"),
+    (1 / 12.0, "a factor of 1/12: feet where inches were meant?"),
+    (0.3048, "a factor of 0.3048: metres where feet were meant?"),
+    (1 / 0.3048, "a factor of 3.28: feet where metres were meant?"),
+    (180 / math.pi, "a factor of 57.3: degrees where radians were meant?"),
+    (math.pi / 180, "a factor of 1/57.3: radians where degrees were meant?"),
+    (2.0, "a factor of 2 too large: a diameter for a radius, or a full width for a half?"),
+    (0.5, "a factor of 2 too small: a radius for a diameter, or a half width for a full?"),
+    (2 * math.pi, "a factor of 2π: revolutions and radians mixed up?"),
+    (1 / (2 * math.pi), "a factor of 1/2π: radians and revolutions mixed up?"),
+)
+
+_REGISTRY: dict[str, Exercise] = {}
+#: Modules of this package that hold a chapter's exercises (imported on first lookup).
+CHAPTER_MODULES = ("conventions", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
+                   "unified")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One input to try: positional ``args`` and keyword ``kwargs``."""
+
+    args: tuple = ()
+    kwargs: dict = field(default_factory=dict)
+
+    def describe(self, names: Sequence[str]) -> str:
+        parts = [f"{n}={_fmt(v)}" for n, v in zip(names, self.args, strict=False)]
+        parts += [f"{k}={_fmt(v)}" for k, v in self.kwargs.items()]
+        return ", ".join(parts) if parts else "no arguments"
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """What :meth:`Exercise.check` found. ``passed`` is True when every case agreed."""
+
+    name: str
+    passed: bool
+    message: str
+    kind: str  # "pass", "not-written", "raised", "shape", "nan", "sign", "swapped",
+    #            "units", "specific", "wrong"
+
+    def __bool__(self) -> bool:
+        return self.passed
+
+    def __repr__(self) -> str:
+        return self.message
+
+    def _repr_html_(self) -> str:
+        import html
+
+        colour = "#1a7f37" if self.passed else "#b35900"
+        return (f'<div class="wheelkin-check" style="color:{colour};font-weight:600">'
+                f"{html.escape(self.message)}</div>")
+
+    def assert_passed(self) -> None:
+        """Raise ``AssertionError`` with the message unless the check passed (for tests)."""
+        if not self.passed:
+            raise AssertionError(self.message)
+
+
+class Exercise:
+    """An exercise: a reference function and the cases on which a student's answer is tried.
+
+    Parameters
+    ----------
+    name : str
+        Unique, ``chapter.short_name``.
+    prompt : str
+        One sentence: what the function must compute, with units.
+    reference : callable
+        The right answer, usually a library function (or a thin wrapper of one).
+    cases : list of Case
+        Inputs to try, in order; choose them so that common mistakes show (a right turn and a
+        left turn, unequal dimensions, a non-zero angular rate ...).
+    wheel_names : sequence of str, optional
+        Names of the elements of a vector answer (e.g. ``("FL", "FR", "RL", "RR")``), so that
+        swapped elements can be named.
+    mistakes : sequence of (callable, str), optional
+        Exercise-specific wrong answers: if the student's output matches ``callable(*args)``
+        the message ``str`` is shown.
+    rtol, atol : float
+        Tolerances of the comparison.
+    """
+
+    def __init__(
+        self,
+        name: str,
+        prompt: str,
+        reference: Callable,
+        cases: Sequence[Case],
+        *,
+        wheel_names: Sequence[str] | None = None,
+        mistakes: Sequence[tuple[Callable, str]] = (),
+        rtol: float = 1e-6,
+        atol: float = 1e-9,
+        register: bool = True,
+    ) -> None:
+        if not cases:
+            raise ValueError("cases must contain at least one Case")
+        self.name = name
+        self.prompt = prompt
+        self.reference = reference
+        self.cases = list(cases)
+        self.wheel_names = tuple(wheel_names) if wheel_names else None
+        self.mistakes = list(mistakes)
+        self.rtol = rtol
+        self.atol = atol
+        try:
+            self.arg_names = list(inspect.signature(reference).parameters)
+        except (TypeError, ValueError):  # pragma: no cover - builtins without a signature
+            self.arg_names = []
+        if register:
+            if name in _REGISTRY:
+                raise ValueError(f"an exercise named {name!r} is already registered")
+            _REGISTRY[name] = self
+
+    def __repr__(self) -> str:
+        return f"Exercise({self.name!r}: {self.prompt})"
+
+    def _close(self, got: np.ndarray, expected: np.ndarray) -> bool:
+        return got.shape == expected.shape and bool(
+            np.allclose(got, expected, rtol=self.rtol, atol=self.atol)
+        )
+
+    def _fail(self, kind: str, text: str) -> CheckResult:
+        return CheckResult(self.name, False, f"✘ {self.name}: {text}", kind)
+
+    def check(self, fn: Callable) -> CheckResult:
+        """Try ``fn`` on every case; return the first problem found, or a pass."""
+        if not callable(fn):
+            return self._fail("raised", f"expected a function, got {type(fn).__name__}")
+        for case in self.cases:
+            where = case.describe(self.arg_names)
+            expected = np.asarray(self.reference(*case.args, **case.kwargs), dtype=float)
+            try:
+                raw = fn(*case.args, **case.kwargs)
+            except NotImplementedError:
+                return self._fail("not-written", "not written yet: replace the "
+                                  "`raise NotImplementedError` with your code, then run the "
+                                  "check again.")
+            except Exception as exc:  # noqa: BLE001 - any error becomes a message
+                return self._fail("raised",
+                                  f"for {where} your function raised {type(exc).__name__}: {exc}")
+            try:
+                got = np.asarray(raw, dtype=float)
+            except (TypeError, ValueError):
+                return self._fail("shape", f"for {where} you returned {raw!r}, which is not a "
+                                  "number or an array of numbers")
+            if got.shape != expected.shape:
+                return self._fail("shape", f"for {where} you returned shape {got.shape} "
+                                  f"({_fmt(raw)}), expected shape {expected.shape}")
+            if not np.all(np.isfinite(got)):
+                return self._fail("nan", f"for {where} your answer contains NaN or infinity: "
+                                  f"{_fmt(got)}")
+            if self._close(got, expected):
+                continue
+            return self._diagnose(case, where, got, expected)
+        return CheckResult(self.name, True, f"✔ {self.name}: correct on all {len(self.cases)} "
+                           "cases.", "pass")
+
+    def _diagnose(self, case: Case, where: str, got: np.ndarray,
+                  expected: np.ndarray) -> CheckResult:
+        head = f"for {where} you returned {_fmt(got)}, expected {_fmt(expected)}"
+        for wrong, text in self.mistakes:
+            try:
+                candidate = np.asarray(wrong(*case.args, **case.kwargs), dtype=float)
+            except Exception:  # noqa: BLE001, S112 - a mistake model that cannot run is skipped
+                continue
+            if self._close(got, candidate):
+                return self._fail("specific", f"{head}: {text}")
+        if np.any(expected != 0) and self._close(got, -expected):
+            return self._fail("sign", f"{head}: the sign is wrong.")
+        if got.ndim == 1 and got.size > 1:
+            swap = self._find_swap(got, expected)
+            if swap:
+                return self._fail("swapped", f"{head}: {swap}")
+            if np.any(expected != 0) and np.allclose(np.abs(got), np.abs(expected),
+                                                     rtol=self.rtol, atol=self.atol):
+                bad = [self._label(i) for i in range(got.size)
+                       if not np.isclose(got[i], expected[i], rtol=self.rtol, atol=self.atol)]
+                return self._fail("sign", f"{head}: the sizes are right but the sign of "
+                                  f"{', '.join(bad)} is wrong.")
+        ratio = _common_ratio(got, expected)
+        if ratio is not None:
+            for factor, text in UNIT_FACTORS:
+                if math.isclose(ratio, factor, rel_tol=1e-4):
+                    return self._fail("units", f"{head}: {text}")
+        return self._fail("wrong", f"{head}.")
+
+    def _label(self, i: int) -> str:
+        if self.wheel_names and i < len(self.wheel_names):
+            return self.wheel_names[i]
+        return f"element {i}"
+
+    def _find_swap(self, got: np.ndarray, expected: np.ndarray) -> str | None:
+        n = got.size
+        for i, j in itertools.combinations(range(n), 2):
+            perm = expected.copy()
+            perm[[i, j]] = perm[[j, i]]
+            if not np.allclose(perm, expected) and self._close(got, perm):
+                return f"{self._label(i)} and {self._label(j)} are swapped."
+        if n % 2 == 0 and n >= 4:
+            half = n // 2
+            flipped = np.concatenate([expected[half:], expected[:half]])
+            if not np.allclose(flipped, expected) and self._close(got, flipped):
+                return "the two halves (left and right wheels?) are swapped."
+        rev = expected[::-1]
+        if not np.allclose(rev, expected) and self._close(got, rev):
+            return "the order is reversed."
+        return None
+
+
+def _common_ratio(got: np.ndarray, expected: np.ndarray) -> float | None:
+    mask = np.abs(expected) > 1e-12
+    if not np.any(mask) or np.any(np.abs(got[~mask]) > 1e-12):
+        return None
+    ratios = got[mask] / expected[mask]
+    if np.allclose(ratios, ratios.flat[0], rtol=1e-6):
+        return float(ratios.flat[0])
+    return None
+
+
+def _fmt(value) -> str:
+    arr = np.asarray(value) if not isinstance(value, str) else None
+    if arr is None or arr.dtype == object:
+        return repr(value)
+    if arr.ndim == 0:
+        return f"{float(arr):.6g}" if np.issubdtype(arr.dtype, np.number) else repr(value)
+    with np.printoptions(precision=6, suppress=True):
+        return np.array2string(arr, separator=", ")
+
+
+def _load_chapters() -> None:
+    for mod in CHAPTER_MODULES:
+        try:
+            importlib.import_module(f"{__name__}.{mod}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{mod}":
+                raise
+
+
+def get(name: str) -> Exercise:
+    """The registered exercise called ``name`` (``ValueError`` listing the names if unknown)."""
+    _load_chapters()
+    try:
+        return _REGISTRY[name]
+    except KeyError:
+        raise ValueError(
+            f"no exercise named {name!r}; known: {', '.join(sorted(_REGISTRY))}"
+        ) from None
+
+
+def all_exercises() -> dict[str, Exercise]:
+    """Every registered exercise, by name."""
+    _load_chapters()
+    return dict(_REGISTRY)
+
+
+def check(name: str, fn: Callable) -> CheckResult:
+    """Check a student's function ``fn`` against exercise ``name``; never raises."""
+    return get(name).check(fn)

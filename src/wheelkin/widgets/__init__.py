@@ -1,0 +1,164 @@
+"""Live panels: sliders that redraw a matplotlib figure in place (needs a running kernel).
+
+A :class:`Panel` owns one figure, built once by ``setup``; every slider change calls
+``update(state, **values)``, which moves the existing artists (no new figure, no re-layout),
+and the figure is re-rendered to PNG into an :class:`ipywidgets.Image`. That keeps a redraw
+well under the book's 50 ms budget and the output stable.
+
+In the static HTML book a panel cannot work (there is no kernel), so chapters tag the cell
+that displays a panel ``remove-output`` and show a precomputed animation instead: no control
+in the HTML looks live and does nothing.
+
+Each chapter defines its panels in a module of this package (``wheelkin.widgets.rover`` ...)
+and registers a factory with :func:`register`, so that the tests can sweep every slider of
+every panel (:func:`all_panels`) and the benchmarks can time every redraw.
+"""
+
+from __future__ import annotations
+
+import importlib
+import io
+import time
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import ipywidgets as widgets
+import matplotlib.pyplot as plt
+from matplotlib.figure import Figure
+
+__all__ = ["Panel", "all_panels", "register", "slider_values"]
+
+_FACTORIES: dict[str, Callable[[], Panel]] = {}
+CHAPTER_MODULES = ("conventions", "sandbox", "rover", "mecanum", "diffdrive", "odometry",
+                   "waypoints", "unified")
+
+
+class Panel:
+    """Sliders driving a figure that is redrawn in place.
+
+    Parameters
+    ----------
+    controls : mapping of str to ipywidgets.ValueWidget
+        The controls, by the keyword name that ``update`` receives.
+    setup : callable () -> (Figure, state)
+        Builds the figure and its artists once; ``state`` is anything ``update`` needs
+        (typically a dict of artists).
+    update : callable (state, **values) -> None
+        Moves the artists to show ``values``. It must not raise for any value a control can
+        take; a value the model rejects is shown as a message in the figure instead.
+    title : str, optional
+        Shown above the controls.
+    dpi : int
+        Resolution of the rendered PNG.
+    """
+
+    def __init__(
+        self,
+        controls: Mapping[str, widgets.ValueWidget],
+        setup: Callable[[], tuple[Figure, Any]],
+        update: Callable[..., None],
+        *,
+        title: str | None = None,
+        dpi: int = 72,
+    ) -> None:
+        self.controls = dict(controls)
+        self._update = update
+        self.dpi = dpi
+        with plt.ioff():
+            self.figure, self.state = setup()
+        self.image = widgets.Image(format="png")
+        self.title = title
+        for control in self.controls.values():
+            control.observe(self._on_change, names="value")
+        self.redraw()
+
+    def values(self) -> dict[str, Any]:
+        """The controls' current values, by name."""
+        return {name: c.value for name, c in self.controls.items()}
+
+    def redraw(self, **overrides: Any) -> float:
+        """Apply ``overrides`` to the controls (without triggering redraws), redraw once.
+
+        Returns the wall time of the redraw in seconds (used by the benchmarks).
+        """
+        for name, value in overrides.items():
+            if name not in self.controls:
+                raise ValueError(f"unknown control {name!r}; known: {', '.join(self.controls)}")
+            control = self.controls[name]
+            with control.hold_trait_notifications():
+                control.unobserve(self._on_change, names="value")
+                try:
+                    control.value = value
+                finally:
+                    control.observe(self._on_change, names="value")
+        start = time.perf_counter()
+        self._update(self.state, **self.values())
+        buf = io.BytesIO()
+        self.figure.savefig(buf, format="png", dpi=self.dpi)
+        self.image.value = buf.getvalue()
+        return time.perf_counter() - start
+
+    def _on_change(self, _change) -> None:
+        self.redraw()
+
+    @property
+    def widget(self) -> widgets.Widget:
+        """The whole panel: title, controls and figure."""
+        children = []
+        if self.title:
+            children.append(widgets.HTML(f"<b>{self.title}</b>"))
+        children.append(widgets.VBox(list(self.controls.values())))
+        children.append(self.image)
+        return widgets.VBox(children)
+
+    def _ipython_display_(self) -> None:
+        from IPython.display import display
+
+        display(self.widget)
+
+    def close(self) -> None:
+        """Release the figure and the widgets."""
+        plt.close(self.figure)
+        for control in self.controls.values():
+            control.close()
+        self.image.close()
+
+
+def slider_values(control: widgets.ValueWidget, n: int = 5) -> list[Any]:
+    """``n`` values spread over a control's whole range (for sweeps in tests and benchmarks)."""
+    if hasattr(control, "options") and control.options:
+        opts = list(control.options)
+        values = [o[1] if isinstance(o, tuple) else o for o in opts]
+        return values
+    if isinstance(control, widgets.Checkbox | widgets.ToggleButton):
+        return [False, True]
+    lo, hi = getattr(control, "min", None), getattr(control, "max", None)
+    if lo is None or hi is None:
+        return [control.value]
+    if isinstance(control.value, int) and not isinstance(control.value, bool):
+        span = sorted({round(lo + (hi - lo) * k / (n - 1)) for k in range(n)})
+        return span
+    return [lo + (hi - lo) * k / (n - 1) for k in range(n)]
+
+
+def register(name: str) -> Callable[[Callable[[], Panel]], Callable[[], Panel]]:
+    """Decorator: register a zero-argument panel factory under ``name``."""
+
+    def deco(factory: Callable[[], Panel]) -> Callable[[], Panel]:
+        if name in _FACTORIES:
+            raise ValueError(f"a panel named {name!r} is already registered")
+        _FACTORIES[name] = factory
+        return factory
+
+    return deco
+
+
+def all_panels() -> dict[str, Callable[[], Panel]]:
+    """Every registered panel factory, by name (imports every chapter's module)."""
+    for mod in CHAPTER_MODULES:
+        try:
+            importlib.import_module(f"{__name__}.{mod}")
+        except ModuleNotFoundError as exc:
+            if exc.name != f"{__name__}.{mod}":
+                raise
+    return dict(_FACTORIES)
