@@ -1,0 +1,113 @@
+"""Input validation at the library's public boundary.
+
+Every public function checks its inputs with these helpers, so that bad input is met with a
+``ValueError`` that names the parameter and the accepted range, never with a NaN result, a
+silent clamp, or a traceback from deep inside numpy.
+
+>>> finite_array("speed", [1.0, 2.0])
+array([1., 2.])
+>>> positive("wheel_radius", -0.1)
+Traceback (most recent call last):
+...
+ValueError: wheel_radius must be a finite number > 0, got -0.1
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+__all__ = [
+    "choice",
+    "finite",
+    "finite_array",
+    "in_range",
+    "nonnegative",
+    "positive",
+    "shaped",
+]
+
+
+def finite(name: str, value) -> float:
+    """``value`` as a float; ``ValueError`` unless it is a finite real number."""
+    if isinstance(value, bool):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a finite number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    return x
+
+
+def positive(name: str, value) -> float:
+    """``value`` as a float; ``ValueError`` unless finite and > 0."""
+    try:
+        x = finite(name, value)
+    except ValueError:
+        raise ValueError(f"{name} must be a finite number > 0, got {value!r}") from None
+    if x <= 0:
+        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    return x
+
+
+def nonnegative(name: str, value) -> float:
+    """``value`` as a float; ``ValueError`` unless finite and >= 0."""
+    try:
+        x = finite(name, value)
+    except ValueError:
+        raise ValueError(f"{name} must be a finite number >= 0, got {value!r}") from None
+    if x < 0:
+        raise ValueError(f"{name} must be a finite number >= 0, got {value!r}")
+    return x
+
+
+def in_range(name: str, value, low: float, high: float, *, inclusive: bool = True) -> float:
+    """``value`` as a float; ``ValueError`` unless finite and within [low, high]."""
+    x = finite(name, value)
+    ok = low <= x <= high if inclusive else low < x < high
+    if not ok:
+        br = "[]" if inclusive else "()"
+        raise ValueError(f"{name} must be in {br[0]}{low:g}, {high:g}{br[1]}, got {value!r}")
+    return x
+
+
+def finite_array(name: str, value, *, allow_inf: bool = False) -> np.ndarray:
+    """``value`` as a float array; ``ValueError`` if it is not numeric or holds NaN (or inf)."""
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be numeric, got {value!r}") from None
+    bad = np.isnan(arr) if allow_inf else ~np.isfinite(arr)
+    if np.any(bad):
+        what = "NaN" if allow_inf else "NaN or infinity"
+        raise ValueError(f"{name} must not contain {what}, got {value!r}")
+    return arr
+
+
+def shaped(name: str, value, trailing: Sequence[int], *, allow_inf: bool = False) -> np.ndarray:
+    """A finite float array whose last dimensions are ``trailing`` (any leading batch shape).
+
+    >>> shaped("twist", [1, 2, 3], (3,)).shape
+    (3,)
+    >>> shaped("twist", [1, 2], (3,))
+    Traceback (most recent call last):
+    ...
+    ValueError: twist must have shape (..., 3), got shape (2,)
+    """
+    arr = finite_array(name, value, allow_inf=allow_inf)
+    k = len(trailing)
+    if arr.ndim < k or tuple(arr.shape[arr.ndim - k:]) != tuple(trailing):
+        want = ", ".join(str(t) for t in trailing)
+        raise ValueError(f"{name} must have shape (..., {want}), got shape {arr.shape}")
+    return arr
+
+
+def choice(name: str, value, options: Sequence[str]) -> str:
+    """``value`` if it is one of ``options``; ``ValueError`` listing them otherwise."""
+    if value not in options:
+        raise ValueError(f"{name} must be one of {', '.join(map(repr, options))}; got {value!r}")
+    return value
