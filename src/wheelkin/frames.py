@@ -1,0 +1,854 @@
+"""Frames: poses, twists, the instantaneous centre of rotation, and each source's frame.
+
+Our frame (REP-103, :cite:`rep103`)
+-----------------------------------
+Body frame: x forward, y left, z up; the reference point is the origin of the body frame.
+World frame: x east, y north, z up. A pose is :math:`(x, y, \\theta)` in the world frame, in
+metres and radians, with the heading :math:`\\theta` measured counter-clockwise from world +x
+and wrapped to :math:`(-\\pi, \\pi]` where a wrapped angle is meant. A twist is
+:math:`(v_x, v_y, \\omega)` in the body frame, in m/s and rad/s, with :math:`\\omega`
+counter-clockwise positive. A positive turning radius :math:`R` is a left turn.
+
+The velocity of a point :math:`p = (p_x, p_y)` fixed to the body is
+
+.. math:: \\dot p = v + \\omega \\times p = (v_x - \\omega p_y,\\; v_y + \\omega p_x),
+
+which vanishes at the instantaneous centre of rotation (ICR)
+:math:`p_{\\mathrm{ICR}} = (-v_y / \\omega,\\; v_x / \\omega)` when :math:`\\omega \\ne 0`.
+
+The sources' frames
+-------------------
+Each source keeps its own frame and units; these functions convert explicitly.
+
+========  ==========================================  =========================================
+source    its convention                              converters
+========  ==========================================  =========================================
+rover     inches; signed turning radius r > 0 turns   :func:`rover_radius_to_ours`,
+          right; unsigned "horizontal" (lateral) and  :func:`ours_to_rover_radius`,
+          "vertical" (longitudinal) offsets           :func:`rover_twist`
+mecanum   feet, ft/s; body X right, Y forward; world  :func:`mecanum_doc_twist_to_ours`,
+          X right (east), Y up (north); headings      :func:`ours_to_mecanum_doc_twist`,
+          clockwise from +Y; omega counter-clockwise  :func:`mecanum_doc_heading_to_ours`,
+          positive (so the heading rate is -omega)    :func:`mecanum_doc_pose_to_ours` ...
+firmware  mm, mrad; world X right, Y forward (the     :func:`firmware_pose_to_ours`,
+          start heading); theta counter-clockwise     :func:`ours_to_firmware_pose`
+          from +Y: dX = -d sin(theta), dY = d cos
+lab       metres; x east, y north, theta counter-     :func:`lab_pose_to_ours`,
+          clockwise from +x: the same as ours         :func:`ours_to_lab_pose`
+========  ==========================================  =========================================
+
+Scalars in, dataclass out; arrays in, arrays out
+------------------------------------------------
+A function taking components (``x, y, theta``) returns a :class:`Pose` or :class:`Twist` when
+every component is a scalar, and an array of shape ``(..., 3)`` (columns in our order) when any
+is an array. A function taking a :class:`Pose`/:class:`Twist` returns a tuple of floats in the
+source's order; given an array of shape ``(..., 3)`` it returns an array of shape ``(..., 3)``.
+Bad input (NaN, infinity, a wrong shape) raises ``ValueError`` naming the parameter.
+
+>>> firmware_pose_to_ours(-100.0, 2000.0, 0.5)
+Pose(x=2.0, y=0.1, theta=0.5)
+>>> mecanum_doc_twist_to_ours(1.0, 0.0, 0.0)  # 1 ft/s to the right = -0.3048 m/s along y
+Twist(vx=0.0, vy=-0.3048, omega=0.0)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from wheelkin import _validate as v
+from wheelkin.units import FOOT, INCH, MM
+
+__all__ = [
+    "Pose",
+    "Twist",
+    "compose",
+    "firmware_pose_to_ours",
+    "icr",
+    "icr_array",
+    "integrate_twist",
+    "inverse",
+    "lab_pose_to_ours",
+    "mecanum_doc_heading_to_ours",
+    "mecanum_doc_pose_to_ours",
+    "mecanum_doc_twist_to_ours",
+    "ours_to_firmware_pose",
+    "ours_to_lab_pose",
+    "ours_to_mecanum_doc_heading",
+    "ours_to_mecanum_doc_pose",
+    "ours_to_mecanum_doc_twist",
+    "ours_to_rover_radius",
+    "point_velocity",
+    "relative",
+    "rover_radius_to_ours",
+    "rover_twist",
+    "se2_exp",
+    "transform_points",
+    "wrap_angle",
+]
+
+_TWO_PI = 2.0 * math.pi
+
+
+# --------------------------------------------------------------------------------------------
+# Dataclasses
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Pose:
+    """A planar pose in our world frame: position ``x``, ``y`` (m), heading ``theta`` (rad).
+
+    ``theta`` is counter-clockwise from world +x. It is stored as given (not wrapped); use
+    :func:`wrap_angle` where a wrapped heading is meant.
+
+    >>> Pose(1.0, 2.0, 0.5).as_array()
+    array([1. , 2. , 0.5])
+    >>> Pose(1.0, float("nan"), 0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: y must be a finite number, got nan
+    """
+
+    x: float
+    y: float
+    theta: float
+
+    def __post_init__(self) -> None:
+        for name in ("x", "y", "theta"):
+            object.__setattr__(self, name, v.finite(name, getattr(self, name)))
+
+    def as_array(self) -> np.ndarray:
+        """``[x, y, theta]`` as a float array of shape (3,)."""
+        return np.array([self.x, self.y, self.theta])
+
+    @classmethod
+    def from_array(cls, values) -> Pose:
+        """A Pose from an array_like ``[x, y, theta]`` of shape (3,)."""
+        arr = v.shaped("pose", values, (3,))
+        if arr.ndim != 1:
+            raise ValueError(f"pose must have shape (3,), got shape {arr.shape}")
+        return cls(*arr.tolist())
+
+
+@dataclass(frozen=True)
+class Twist:
+    """A planar twist in our body frame: ``vx``, ``vy`` (m/s), ``omega`` (rad/s, CCW +).
+
+    >>> Twist(0.5, 0.0, 0.25).as_array()
+    array([0.5 , 0.  , 0.25])
+    >>> Twist(0.5, 0.0, float("inf"))
+    Traceback (most recent call last):
+    ...
+    ValueError: omega must be a finite number, got inf
+    """
+
+    vx: float
+    vy: float
+    omega: float
+
+    def __post_init__(self) -> None:
+        for name in ("vx", "vy", "omega"):
+            object.__setattr__(self, name, v.finite(name, getattr(self, name)))
+
+    def as_array(self) -> np.ndarray:
+        """``[vx, vy, omega]`` as a float array of shape (3,)."""
+        return np.array([self.vx, self.vy, self.omega])
+
+    @classmethod
+    def from_array(cls, values) -> Twist:
+        """A Twist from an array_like ``[vx, vy, omega]`` of shape (3,)."""
+        arr = v.shaped("twist", values, (3,))
+        if arr.ndim != 1:
+            raise ValueError(f"twist must have shape (3,), got shape {arr.shape}")
+        return cls(*arr.tolist())
+
+
+# --------------------------------------------------------------------------------------------
+# Helpers: scalars in -> dataclass out, arrays in -> arrays out
+# --------------------------------------------------------------------------------------------
+
+
+def _components(names: tuple[str, ...], values: tuple, *, allow_inf: bool = False):
+    """Validate components; return (list of arrays broadcast together, all_scalar)."""
+    arrays = [v.finite_array(n, x, allow_inf=allow_inf) for n, x in zip(names, values,
+                                                                        strict=True)]
+    scalar = all(a.ndim == 0 for a in arrays)
+    try:
+        arrays = list(np.broadcast_arrays(*arrays))
+    except ValueError:
+        shapes = ", ".join(f"{n}: {a.shape}" for n, a in zip(names, arrays, strict=True))
+        raise ValueError(f"{', '.join(names)} must have the same shape, got {shapes}") from None
+    return arrays, scalar
+
+
+def _pack(cls, columns, scalar: bool):
+    if scalar:
+        return cls(*(float(c) for c in columns))
+    return np.stack([np.asarray(c, dtype=float) for c in columns], axis=-1)
+
+
+def _unpack(name: str, value, cls):
+    """(columns, is_dataclass) from a dataclass instance or an array (..., 3)."""
+    if isinstance(value, cls):
+        return list(value.as_array()), True
+    if isinstance(value, Pose | Twist):
+        raise ValueError(f"{name} must be a {cls.__name__} or an array of shape (..., 3), "
+                         f"got a {type(value).__name__}")
+    arr = v.shaped(name, value, (3,))
+    return [arr[..., 0], arr[..., 1], arr[..., 2]], False
+
+
+def _unpack_out(columns, is_dataclass: bool):
+    if is_dataclass:
+        return tuple(float(c) for c in columns)
+    return np.stack(columns, axis=-1)
+
+
+def _no_negative_zero(a):
+    return a + 0.0
+
+
+# --------------------------------------------------------------------------------------------
+# Angles, ICR, point velocities
+# --------------------------------------------------------------------------------------------
+
+
+def wrap_angle(angle):
+    """Wrap an angle (rad) to :math:`(-\\pi, \\pi]`; vectorised.
+
+    An angle already in :math:`(-\\pi, \\pi]` is returned unchanged (bit for bit), so wrapping
+    is idempotent; :math:`-\\pi` maps to :math:`\\pi`.
+
+    Parameters
+    ----------
+    angle : float or array_like
+        Finite angle(s) in radians.
+
+    Examples
+    --------
+    >>> wrap_angle(3 * math.pi / 2)
+    -1.5707963267948966
+    >>> wrap_angle([-math.pi, 0.0, 7.0])
+    array([3.14159265, 0.        , 0.71681469])
+    """
+    a = v.finite_array("angle", angle)
+    inside = (a > -math.pi) & (a <= math.pi)
+    r = np.remainder(a + math.pi, _TWO_PI) - math.pi  # [-pi, pi] after rounding
+    r = np.where(r <= -math.pi, r + _TWO_PI, r)
+    r = np.minimum(r, math.pi)
+    out = np.where(inside, a, r)
+    return float(out) if out.ndim == 0 else out
+
+
+def point_velocity(twist, point):
+    """Velocity (m/s, body frame) of a point fixed to the body: :math:`v + \\omega \\times p`.
+
+    .. math:: \\dot p = (v_x - \\omega p_y,\\; v_y + \\omega p_x)
+
+    Parameters
+    ----------
+    twist : Twist or array_like, shape (3,)
+        The body's twist :math:`(v_x, v_y, \\omega)`.
+    point : array_like, shape (..., 2)
+        Point(s) :math:`p` in the body frame, metres.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+
+    Examples
+    --------
+    Turning left at 1 rad/s while moving forward at 1 m/s, the point 1 m to the left is still:
+
+    >>> point_velocity(Twist(1.0, 0.0, 1.0), [0.0, 1.0])
+    array([0., 0.])
+    """
+    vx, vy, w = _twist_columns("twist", twist)
+    p = v.shaped("point", point, (2,))
+    return np.stack([vx - w * p[..., 1], vy + w * p[..., 0]], axis=-1)
+
+
+def _twist_columns(name: str, twist):
+    if isinstance(twist, Twist):
+        return twist.vx, twist.vy, twist.omega
+    arr = v.shaped(name, twist, (3,))
+    return arr[..., 0], arr[..., 1], arr[..., 2]
+
+
+def icr(twist) -> tuple[float, float] | None:
+    """The instantaneous centre of rotation of a planar twist, in the body frame (m).
+
+    .. math:: p_{\\mathrm{ICR}} = \\left(-\\frac{v_y}{\\omega},\\; \\frac{v_x}{\\omega}\\right)
+
+    the one point of the body (extended) whose velocity :math:`v + \\omega \\times p` is zero.
+
+    Parameters
+    ----------
+    twist : Twist or array_like, shape (3,)
+        :math:`(v_x, v_y, \\omega)` in m/s and rad/s.
+
+    Returns
+    -------
+    (float, float) or None
+        ``(x, y)`` of the ICR; ``None`` when :math:`\\omega = 0` (a pure translation: the ICR is
+        at infinity, perpendicular to :math:`(v_x, v_y)`; at rest it is undefined). For arrays
+        of twists use :func:`icr_array`.
+
+    Examples
+    --------
+    A left turn of radius 2 m (forward at 1 m/s, 0.5 rad/s): the ICR is 2 m to the left.
+
+    >>> icr(Twist(1.0, 0.0, 0.5))
+    (0.0, 2.0)
+    >>> icr(Twist(1.0, 0.0, 0.0)) is None
+    True
+    """
+    if not isinstance(twist, Twist):
+        twist = Twist.from_array(twist)
+    if twist.omega == 0.0:
+        return None
+    return (_no_negative_zero(-twist.vy / twist.omega), _no_negative_zero(twist.vx / twist.omega))
+
+
+def icr_array(twists) -> np.ndarray:
+    """Vectorised :func:`icr`: shape (..., 3) twists to shape (..., 2) ICRs (m).
+
+    Where :math:`\\omega = 0` both coordinates are ``inf`` (the ICR is at infinity).
+
+    Examples
+    --------
+    >>> icr_array([[1.0, 0.0, 0.5], [1.0, 0.0, 0.0], [0.0, 1.0, -1.0]])
+    array([[ 0.,  2.],
+           [inf, inf],
+           [ 1.,  0.]])
+    """
+    arr = v.shaped("twists", twists, (3,))
+    w = arr[..., 2]
+    moving = w != 0.0
+    safe = np.where(moving, w, 1.0)
+    out = np.stack([-arr[..., 1] / safe, arr[..., 0] / safe], axis=-1) + 0.0
+    return np.where(moving[..., None], out, np.inf)
+
+
+# --------------------------------------------------------------------------------------------
+# SE(2): exact integration of a constant twist, composition
+# --------------------------------------------------------------------------------------------
+
+
+def _sin_over(phi):
+    """sin(phi)/phi and (1 - cos(phi))/phi, accurate near phi = 0."""
+    small = np.abs(phi) < 1e-4
+    p = np.where(small, 1.0, phi)
+    p2 = phi * phi
+    a = np.where(small, 1.0 - p2 / 6.0 + p2 * p2 / 120.0, np.sin(p) / p)
+    b = np.where(small, phi / 2.0 - phi * p2 / 24.0, (1.0 - np.cos(p)) / p)
+    return a, b
+
+
+def se2_exp(twist, dt):
+    """The body-frame displacement after holding ``twist`` constant for ``dt`` seconds.
+
+    Exact (the body moves on a circular arc about the ICR, or straight when
+    :math:`\\omega = 0`). With :math:`\\varphi = \\omega\\,\\Delta t`:
+
+    .. math::
+        \\Delta x = \\Delta t \\left(v_x \\frac{\\sin\\varphi}{\\varphi}
+                    - v_y \\frac{1-\\cos\\varphi}{\\varphi}\\right),\\quad
+        \\Delta y = \\Delta t \\left(v_x \\frac{1-\\cos\\varphi}{\\varphi}
+                    + v_y \\frac{\\sin\\varphi}{\\varphi}\\right),\\quad
+        \\Delta\\theta = \\varphi
+
+    (the fractions tend to 1 and 0 as :math:`\\varphi \\to 0`; series are used there).
+
+    Parameters
+    ----------
+    twist : Twist or array_like, shape (..., 3)
+        :math:`(v_x, v_y, \\omega)` in m/s and rad/s.
+    dt : float
+        Duration in seconds (finite; negative integrates backwards).
+
+    Returns
+    -------
+    Pose or numpy.ndarray, shape (..., 3)
+        The displacement :math:`(\\Delta x, \\Delta y, \\Delta\\theta)` in the body frame at the
+        start (a Pose for a Twist; ``Δθ`` not wrapped).
+
+    Examples
+    --------
+    A quarter circle of radius 1 m to the left:
+
+    >>> d = se2_exp(Twist(math.pi / 2, 0.0, math.pi / 2), 1.0)
+    >>> print(f"{d.x:.6f} {d.y:.6f} {d.theta:.6f}")
+    1.000000 1.000000 1.570796
+    """
+    is_twist = isinstance(twist, Twist)
+    vx, vy, w = _twist_columns("twist", twist)
+    t = v.finite("dt", dt)
+    a, b = _sin_over(np.asarray(w * t, dtype=float))
+    dx = t * (vx * a - vy * b)
+    dy = t * (vx * b + vy * a)
+    dth = np.asarray(w * t, dtype=float)
+    return _pack(Pose, (dx, dy, dth), is_twist)
+
+
+def compose(pose, delta):
+    """The pose reached from ``pose`` by the body-frame displacement ``delta``: pose ⊕ delta.
+
+    .. math::
+        x' = x + \\Delta x\\cos\\theta - \\Delta y \\sin\\theta,\\quad
+        y' = y + \\Delta x \\sin\\theta + \\Delta y \\cos\\theta,\\quad
+        \\theta' = \\operatorname{wrap}(\\theta + \\Delta\\theta)
+
+    Parameters
+    ----------
+    pose, delta : Pose or array_like, shape (..., 3)
+        World pose and body-frame displacement (m, m, rad). Broadcast together.
+
+    Returns
+    -------
+    Pose (if both are Poses) or numpy.ndarray, shape (..., 3)
+
+    Examples
+    --------
+    Facing north (+y) at (1, 0), 2 m straight ahead is (1, 2):
+
+    >>> p = compose(Pose(1.0, 0.0, math.pi / 2), Pose(2.0, 0.0, 0.0))
+    >>> print(f"{p.x:.6f} {p.y:.6f} {p.theta:.6f}")
+    1.000000 2.000000 1.570796
+    """
+    both = isinstance(pose, Pose) and isinstance(delta, Pose)
+    x, y, th = _pose_columns("pose", pose)
+    dx, dy, dth = _pose_columns("delta", delta)
+    c, s = np.cos(th), np.sin(th)
+    out = (x + c * dx - s * dy, y + s * dx + c * dy, wrap_angle(th + dth))
+    return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], both)
+
+
+def _pose_columns(name: str, pose):
+    if isinstance(pose, Pose):
+        return pose.x, pose.y, pose.theta
+    arr = v.shaped(name, pose, (3,))
+    return arr[..., 0], arr[..., 1], arr[..., 2]
+
+
+def inverse(pose):
+    """The inverse pose: ``compose(pose, inverse(pose))`` is the identity.
+
+    Examples
+    --------
+    >>> p = Pose(1.0, 2.0, 0.3)
+    >>> np.round(compose(p, inverse(p)).as_array(), 12)
+    array([0., 0., 0.])
+    """
+    is_pose = isinstance(pose, Pose)
+    x, y, th = _pose_columns("pose", pose)
+    c, s = np.cos(th), np.sin(th)
+    out = (-c * x - s * y, s * x - c * y, wrap_angle(-np.asarray(th)))
+    return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], is_pose)
+
+
+def relative(pose_from, pose_to):
+    """The displacement of ``pose_to`` seen from ``pose_from`` (in its body frame).
+
+    ``compose(pose_from, relative(pose_from, pose_to))`` equals ``pose_to``.
+
+    Examples
+    --------
+    >>> d = relative(Pose(1.0, 1.0, math.pi / 2), Pose(1.0, 3.0, math.pi / 2))
+    >>> print(f"{d.x:.6f} {d.y:.6f} {d.theta:.6f}")  # 2 m straight ahead
+    2.000000 0.000000 0.000000
+    """
+    both = isinstance(pose_from, Pose) and isinstance(pose_to, Pose)
+    x0, y0, th0 = _pose_columns("pose_from", pose_from)
+    x1, y1, th1 = _pose_columns("pose_to", pose_to)
+    c, s = np.cos(th0), np.sin(th0)
+    dx, dy = x1 - x0, y1 - y0
+    out = (c * dx + s * dy, -s * dx + c * dy, wrap_angle(np.asarray(th1) - th0))
+    return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], both)
+
+
+def transform_points(pose, points) -> np.ndarray:
+    """Body-frame points (m, shape (..., 2)) to world coordinates for a body at ``pose``.
+
+    Examples
+    --------
+    >>> np.round(transform_points(Pose(1.0, 0.0, math.pi / 2), [[1.0, 0.0], [0.0, 1.0]]), 12)
+    array([[1., 1.],
+           [0., 0.]])
+    """
+    x, y, th = _pose_columns("pose", pose)
+    p = v.shaped("points", points, (2,))
+    c, s = np.cos(th), np.sin(th)
+    return np.stack([x + c * p[..., 0] - s * p[..., 1], y + s * p[..., 0] + c * p[..., 1]],
+                    axis=-1)
+
+
+def integrate_twist(twists, dt, pose0=None) -> np.ndarray:
+    """Poses of a body driven by a sequence of twists, each held constant for ``dt`` seconds.
+
+    Exact for piecewise-constant twists (each step is :func:`se2_exp` composed onto the pose
+    before it), and vectorised: the headings are a cumulative sum, and each body-frame step is
+    rotated into the world by the heading at its start.
+
+    Parameters
+    ----------
+    twists : array_like, shape (N, 3)
+        Body-frame twists :math:`(v_x, v_y, \\omega)`, m/s and rad/s, one per step.
+    dt : float
+        Step duration in seconds (> 0).
+    pose0 : Pose or array_like, shape (3,), optional
+        Start pose (default: the origin, heading 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (N + 1, 3)
+        Poses :math:`(x, y, \\theta)` at times 0, dt, ..., N dt (headings wrapped).
+
+    Examples
+    --------
+    A full circle of radius 1 m in 4 steps comes back to the start:
+
+    >>> poses = integrate_twist([[math.pi / 2, 0.0, math.pi / 2]] * 4, 1.0)
+    >>> np.round(poses, 12) + 0.0
+    array([[ 0.        ,  0.        ,  0.        ],
+           [ 1.        ,  1.        ,  1.57079633],
+           [ 0.        ,  2.        ,  3.14159265],
+           [-1.        ,  1.        , -1.57079633],
+           [ 0.        ,  0.        ,  0.        ]])
+    """
+    tw = v.shaped("twists", twists, (3,))
+    if tw.ndim != 2:
+        raise ValueError(f"twists must have shape (N, 3), got shape {tw.shape}")
+    t = v.positive("dt", dt)
+    if pose0 is None:
+        start = np.zeros(3)
+    elif isinstance(pose0, Pose):
+        start = pose0.as_array()
+    else:
+        start = v.shaped("pose0", pose0, (3,))
+        if start.ndim != 1:
+            raise ValueError(f"pose0 must have shape (3,), got shape {start.shape}")
+    steps = se2_exp(tw, t)  # (N, 3) body-frame displacements
+    headings = start[2] + np.concatenate([[0.0], np.cumsum(steps[:, 2])])
+    c, s = np.cos(headings[:-1]), np.sin(headings[:-1])
+    world_dx = c * steps[:, 0] - s * steps[:, 1]
+    world_dy = s * steps[:, 0] + c * steps[:, 1]
+    out = np.empty((tw.shape[0] + 1, 3))
+    out[:, 0] = start[0] + np.concatenate([[0.0], np.cumsum(world_dx)])
+    out[:, 1] = start[1] + np.concatenate([[0.0], np.cumsum(world_dy)])
+    out[:, 2] = wrap_angle(headings)
+    return out + 0.0
+
+
+# --------------------------------------------------------------------------------------------
+# Rover (JPL Open Source Rover controls walkthrough): inches, r > 0 = right turn
+# --------------------------------------------------------------------------------------------
+
+
+def rover_radius_to_ours(radius_in):
+    """The rover document's turning radius (inches, r > 0 = right) as ours (m, R > 0 = left).
+
+    .. math:: R = -0.0254\\, r
+
+    The rover walkthrough :cite:`osr_controls` measures the turning radius from the rover's
+    centre to the turning point in inches, positive for a right turn. Ours is in metres and
+    positive for a left turn. An infinite radius (driving straight) stays infinite, with its
+    sign flipped; NaN is rejected.
+
+    Parameters
+    ----------
+    radius_in : float or array_like
+        Rover turning radius in inches (may be ``±inf``).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Our signed turning radius :math:`R` in metres.
+
+    Examples
+    --------
+    >>> rover_radius_to_ours(30.0)  # 30 in to the right
+    -0.762
+    >>> rover_radius_to_ours(-math.inf)
+    inf
+    """
+    r = v.finite_array("radius_in", radius_in, allow_inf=True)
+    out = _no_negative_zero(-r * INCH)
+    return float(out) if out.ndim == 0 else out
+
+
+def ours_to_rover_radius(radius_m):
+    """Our turning radius (m, R > 0 = left) as the rover document's (inches, r > 0 = right).
+
+    .. math:: r = -R / 0.0254
+
+    Examples
+    --------
+    >>> ours_to_rover_radius(-0.762)
+    30.0
+    """
+    r = v.finite_array("radius_m", radius_m, allow_inf=True)
+    out = _no_negative_zero(-r / INCH)
+    return float(out) if out.ndim == 0 else out
+
+
+def rover_twist(radius_in, centre_speed_in_per_s):
+    """Our twist for the rover document's turning radius and the speed of the rover's centre.
+
+    .. math:: v_x = 0.0254\\, X,\\quad v_y = 0,\\quad \\omega = v_x / R,\\quad R = -0.0254\\, r
+
+    where :math:`r` (in) is the rover document's radius (> 0 right) and :math:`X` (in/s) the
+    forward speed of the centre of the rover (the midpoint between the middle wheels). An
+    infinite radius is straight driving (:math:`\\omega = 0`). A radius of 0 (a spin in place)
+    cannot be described by a centre speed and is rejected.
+
+    Parameters
+    ----------
+    radius_in : float or array_like
+        Turning radius in inches, > 0 right, ``±inf`` straight; non-zero.
+    centre_speed_in_per_s : float or array_like
+        Forward speed of the rover's centre in inches per second.
+
+    Returns
+    -------
+    Twist, or numpy.ndarray of shape (..., 3) for array input
+
+    Examples
+    --------
+    30 inches to the right at 10 in/s: clockwise, so omega < 0.
+
+    >>> tw = rover_twist(30.0, 10.0)
+    >>> print(f"{tw.vx:.4f} {tw.vy:.1f} {tw.omega:.6f}")
+    0.2540 0.0 -0.333333
+    """
+    r = v.finite_array("radius_in", radius_in, allow_inf=True)
+    speed = v.finite_array("centre_speed_in_per_s", centre_speed_in_per_s)
+    scalar = r.ndim == 0 and speed.ndim == 0
+    try:
+        r, speed = np.broadcast_arrays(r, speed)
+    except ValueError:
+        raise ValueError("radius_in and centre_speed_in_per_s must have the same shape, got "
+                         f"{r.shape} and {speed.shape}") from None
+    if np.any(r == 0):
+        raise ValueError("radius_in must be non-zero (a spin in place has no centre speed); "
+                         f"got {radius_in!r}")
+    vx = speed * INCH
+    straight = np.isinf(r)
+    big_r = np.where(straight, 1.0, -r * INCH)
+    omega = np.where(straight, 0.0, vx / big_r)
+    return _pack(Twist, (vx, np.zeros_like(vx), _no_negative_zero(omega)), scalar)
+
+
+# --------------------------------------------------------------------------------------------
+# Mecanum simulator (T. Florida, JHU 2014): feet; body X right, Y forward; headings clockwise
+# from +Y; omega counter-clockwise positive
+# --------------------------------------------------------------------------------------------
+
+
+def mecanum_doc_twist_to_ours(Vx_ftps, Vy_ftps, omega):
+    """The mecanum simulator's body twist (ft/s, X right, Y forward) as ours (SI).
+
+    .. math:: v_x = 0.3048\\, V_y,\\quad v_y = -0.3048\\, V_x,\\quad \\omega = \\omega_{doc}
+
+    The simulator :cite:`florida2014mecanum` writes its body velocities with X to the right and
+    Y forward, in feet per second. Its rotation rate is counter-clockwise positive (its inverse
+    kinematic matrix only matches the wheel layout FL, FR, RL, RR that way), in rad/s, so it
+    passes through unchanged, although its headings are clockwise.
+
+    Parameters
+    ----------
+    Vx_ftps, Vy_ftps : float or array_like
+        Rightward and forward speed, ft/s.
+    omega : float or array_like
+        Yaw rate, rad/s, counter-clockwise positive.
+
+    Returns
+    -------
+    Twist, or numpy.ndarray of shape (..., 3) for array input
+
+    Examples
+    --------
+    >>> mecanum_doc_twist_to_ours(0.0, 10.0, 0.5)
+    Twist(vx=3.048, vy=0.0, omega=0.5)
+    """
+    (vx_doc, vy_doc, w), scalar = _components(("Vx_ftps", "Vy_ftps", "omega"),
+                                              (Vx_ftps, Vy_ftps, omega))
+    return _pack(Twist, (_no_negative_zero(vy_doc * FOOT), _no_negative_zero(-vx_doc * FOOT),
+                         w), scalar)
+
+
+def ours_to_mecanum_doc_twist(twist):
+    """Our twist (SI) as the mecanum simulator's ``(Vx_ftps, Vy_ftps, omega)``.
+
+    .. math:: V_x = -v_y / 0.3048,\\quad V_y = v_x / 0.3048,\\quad \\omega_{doc} = \\omega
+
+    Parameters
+    ----------
+    twist : Twist or array_like, shape (..., 3)
+
+    Returns
+    -------
+    tuple of float (for a Twist) or numpy.ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> ours_to_mecanum_doc_twist(Twist(3.048, -0.6096, 0.5))
+    (2.0, 10.0, 0.5)
+    """
+    (vx, vy, w), is_twist = _unpack("twist", twist, Twist)
+    return _unpack_out([_no_negative_zero(-np.asarray(vy) / FOOT),
+                        _no_negative_zero(np.asarray(vx) / FOOT), np.asarray(w)], is_twist)
+
+
+def mecanum_doc_heading_to_ours(psi):
+    """The mecanum simulator's heading (rad, clockwise from +Y) as ours (CCW from +x).
+
+    .. math:: \\theta = \\operatorname{wrap}(\\pi/2 - \\psi)
+
+    The simulator's user interface gives angles in degrees: convert them first with
+    ``wheelkin.units.to_si(psi_deg, "deg")``.
+
+    Examples
+    --------
+    >>> mecanum_doc_heading_to_ours(0.0)  # facing +Y (north) is our pi/2
+    1.5707963267948966
+    >>> mecanum_doc_heading_to_ours(math.pi / 2)  # facing +X (east) is our 0
+    0.0
+    """
+    p = v.finite_array("psi", psi)
+    return wrap_angle(_no_negative_zero(math.pi / 2 - p))
+
+
+def ours_to_mecanum_doc_heading(theta):
+    """Our heading (rad, CCW from +x) as the mecanum simulator's (clockwise from +Y).
+
+    .. math:: \\psi = \\operatorname{wrap}(\\pi/2 - \\theta)
+
+    Examples
+    --------
+    >>> ours_to_mecanum_doc_heading(math.pi)  # facing west is 270 deg clockwise from north
+    -1.5707963267948966
+    """
+    t = v.finite_array("theta", theta)
+    return wrap_angle(_no_negative_zero(math.pi / 2 - t))
+
+
+def mecanum_doc_pose_to_ours(X_ft, Y_ft, psi):
+    """The mecanum simulator's world pose (ft, ft, rad clockwise from +Y) as ours.
+
+    .. math:: x = 0.3048\\, X,\\quad y = 0.3048\\, Y,\\quad
+              \\theta = \\operatorname{wrap}(\\pi/2 - \\psi)
+
+    Its world X is to the right (east) and Y up the page (north), as ours; only the unit and
+    the heading convention differ.
+
+    Examples
+    --------
+    >>> mecanum_doc_pose_to_ours(10.0, -5.0, 0.0)
+    Pose(x=3.048, y=-1.524, theta=1.5707963267948966)
+    """
+    (x_doc, y_doc, p), scalar = _components(("X_ft", "Y_ft", "psi"), (X_ft, Y_ft, psi))
+    return _pack(Pose, (x_doc * FOOT, y_doc * FOOT, np.asarray(mecanum_doc_heading_to_ours(p))),
+                 scalar)
+
+
+def ours_to_mecanum_doc_pose(pose):
+    """Our world pose as the mecanum simulator's ``(X_ft, Y_ft, psi)`` (psi clockwise from +Y).
+
+    Examples
+    --------
+    >>> ours_to_mecanum_doc_pose(Pose(3.048, -1.524, 0.0))
+    (10.0, -5.0, 1.5707963267948966)
+    """
+    (x, y, th), is_pose = _unpack("pose", pose, Pose)
+    return _unpack_out([np.asarray(x) / FOOT, np.asarray(y) / FOOT,
+                        np.asarray(ours_to_mecanum_doc_heading(th))], is_pose)
+
+
+# --------------------------------------------------------------------------------------------
+# Firmware (Radon Ulzer): mm, mrad; X right, Y forward; theta CCW from +Y
+# --------------------------------------------------------------------------------------------
+
+
+def firmware_pose_to_ours(X_mm, Y_mm, theta):
+    """The Radon Ulzer firmware's pose (mm, mm, rad) as ours (m, m, rad).
+
+    .. math:: x = Y / 1000,\\quad y = -X / 1000,\\quad \\theta = \\theta_{fw}
+
+    The firmware :cite:`radonulzer_architecture` puts Y along the start heading and X to its
+    right, and measures its orientation counter-clockwise from +Y, so a step :math:`d` moves it
+    by :math:`dX = -d \\sin\\theta`, :math:`dY = d \\cos\\theta`. Turning that frame so that its
+    +Y becomes our +x leaves the heading angle unchanged; it is passed through as given (not
+    wrapped: the firmware keeps it in :math:`(-2\\pi, 2\\pi)`). The firmware stores the
+    orientation in mrad: convert with ``wheelkin.units.to_si(theta_mrad, "mrad")`` first.
+
+    Parameters
+    ----------
+    X_mm, Y_mm : float or array_like
+        Position in millimetres (X right of the start heading, Y along it).
+    theta : float or array_like
+        Orientation in radians, counter-clockwise from +Y.
+
+    Returns
+    -------
+    Pose, or numpy.ndarray of shape (..., 3) for array input
+
+    Examples
+    --------
+    >>> firmware_pose_to_ours(0.0, 1000.0, 0.0)  # 1 m straight ahead
+    Pose(x=1.0, y=0.0, theta=0.0)
+    """
+    (x_fw, y_fw, th), scalar = _components(("X_mm", "Y_mm", "theta"), (X_mm, Y_mm, theta))
+    return _pack(Pose, (y_fw * MM, _no_negative_zero(-x_fw * MM), th), scalar)
+
+
+def ours_to_firmware_pose(pose):
+    """Our pose as the Radon Ulzer firmware's ``(X_mm, Y_mm, theta)``.
+
+    .. math:: X = -1000\\, y,\\quad Y = 1000\\, x,\\quad \\theta_{fw} = \\theta
+
+    Examples
+    --------
+    >>> ours_to_firmware_pose(Pose(2.0, 0.1, 0.5))
+    (-100.0, 2000.0, 0.5)
+    """
+    (x, y, th), is_pose = _unpack("pose", pose, Pose)
+    return _unpack_out([_no_negative_zero(-np.asarray(y) / MM), np.asarray(x) / MM,
+                        np.asarray(th)], is_pose)
+
+
+# --------------------------------------------------------------------------------------------
+# Lab (Webots waypoint lab): metres, x east, y north, theta CCW from +x: the same as ours
+# --------------------------------------------------------------------------------------------
+
+
+def lab_pose_to_ours(x, y, theta):
+    """The Webots lab's pose as ours: the identity, validated.
+
+    The lab :cite:`webots_waypoint_lab` works in metres with x east, y north and the heading
+    counter-clockwise from +x (its position update is :math:`x = x_0 + \\Delta x \\cos\\theta`,
+    :math:`y = y_0 + \\Delta x \\sin\\theta`): the same as ours. The converter exists so that
+    code says where a number came from, and it still rejects NaN and infinity.
+
+    Examples
+    --------
+    >>> lab_pose_to_ours(1.5, -1.5, math.pi / 2)
+    Pose(x=1.5, y=-1.5, theta=1.5707963267948966)
+    """
+    (x_lab, y_lab, th), scalar = _components(("x", "y", "theta"), (x, y, theta))
+    return _pack(Pose, (x_lab, y_lab, th), scalar)
+
+
+def ours_to_lab_pose(pose):
+    """Our pose as the Webots lab's ``(x, y, theta)``: the identity, validated.
+
+    Examples
+    --------
+    >>> ours_to_lab_pose(Pose(1.5, -1.5, 0.25))
+    (1.5, -1.5, 0.25)
+    """
+    (x, y, th), is_pose = _unpack("pose", pose, Pose)
+    return _unpack_out([np.asarray(x), np.asarray(y), np.asarray(th)], is_pose)
