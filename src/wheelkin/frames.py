@@ -339,12 +339,12 @@ def icr_array(twists) -> np.ndarray:
 
 
 def _sin_over(phi):
-    """sin(phi)/phi and (1 - cos(phi))/phi, accurate near phi = 0."""
-    small = np.abs(phi) < 1e-4
-    p = np.where(small, 1.0, phi)
-    p2 = phi * phi
-    a = np.where(small, 1.0 - p2 / 6.0 + p2 * p2 / 120.0, np.sin(p) / p)
-    b = np.where(small, phi / 2.0 - phi * p2 / 24.0, (1.0 - np.cos(p)) / p)
+    """sin(phi)/phi and (1 - cos(phi))/phi = 2 sin(phi/2)**2/phi, without cancellation."""
+    phi = np.asarray(phi, dtype=float)
+    zero = phi == 0.0
+    p = np.where(zero, 1.0, phi)
+    a = np.where(zero, 1.0, np.sin(p) / p)
+    b = np.where(zero, 0.0, 2.0 * np.sin(p / 2.0) ** 2 / p)
     return a, b
 
 
@@ -361,7 +361,8 @@ def se2_exp(twist, dt):
                     + v_y \\frac{\\sin\\varphi}{\\varphi}\\right),\\quad
         \\Delta\\theta = \\varphi
 
-    (the fractions tend to 1 and 0 as :math:`\\varphi \\to 0`; series are used there).
+    (the fractions tend to 1 and 0 as :math:`\\varphi \\to 0`; :math:`1-\\cos\\varphi` is
+    computed as :math:`2\\sin^2(\\varphi/2)` to avoid cancellation for small turns).
 
     Parameters
     ----------
