@@ -1,0 +1,150 @@
+"""The odometry chapter's live panel (notebooks/06_odometry).
+
+``odometry.square`` drives the Radon Ulzer robot around a 1 m square with rounded corners
+(kinematically: the wheels roll without slip) and dead-reckons it from its quantised encoder
+counts, with three sliders: the odometry's update step (mm of wheel travel per update), a
+wheel-diameter mismatch (right wheel larger than the left, %) and a wheel-base error (the
+wheel base the odometry assumes, % off the true one). It shows the true path, the exact-arc
+estimate and the Euler estimate, and their end-point errors.
+
+:func:`simulate_square` is the model behind it, usable on its own (the chapter uses it too).
+"""
+
+from __future__ import annotations
+
+import math
+
+import ipywidgets as widgets
+import matplotlib.pyplot as plt
+import numpy as np
+
+from wheelkin import odometry as odo
+from wheelkin.widgets import Panel, register
+
+__all__ = ["rounded_square", "simulate_square", "square_panel"]
+
+STEPS_PER_MM = 8.043  # Radon Ulzer: ENC = 8043 steps/m
+WHEEL_BASE_MM = 85.0  # Radon Ulzer: W
+SIDE_MM = 1000.0
+CORNER_RADIUS_MM = 150.0
+STEP_OPTIONS = (1, 2, 5, 10, 20, 50, 100)  # mm of wheel travel per odometry update
+
+
+def rounded_square(side_mm=SIDE_MM, corner_radius_mm=CORNER_RADIUS_MM, clockwise=False):
+    """Segments ``(distance_mm, turn_rad)`` of a square with arcs of radius r at the corners.
+
+    Starts at the middle of the first side, heading along it; four straight pieces of
+    ``side - 2 r`` split around the start, and four quarter arcs (left turns, or right turns
+    when ``clockwise``). Turn on the spot with ``corner_radius_mm=0``.
+    """
+    r = corner_radius_mm
+    straight = side_mm - 2.0 * r
+    turn = -math.pi / 2 if clockwise else math.pi / 2
+    segs = [(straight / 2, 0.0)]
+    for i in range(4):
+        segs.append((r * abs(turn), turn))
+        segs.append((straight if i < 3 else straight / 2, 0.0))
+    return np.array(segs)
+
+
+def simulate_square(step_mm=10.0, diameter_error_pct=0.0, base_error_pct=0.0, *,
+                    clockwise=False, corner_radius_mm=CORNER_RADIUS_MM,
+                    methods=("exact", "euler")):
+    """True path and dead-reckoned estimates of the rounded square.
+
+    The true robot has wheel base W = 85 mm and wheel diameters D_L = D (1 − e/2),
+    D_R = D (1 + e/2) with e = ``diameter_error_pct``/100, so an encoder step is
+    (1 ∓ e/2)/ENC_mm of travel. The odometry assumes equal wheels and a wheel base
+    W (1 + ``base_error_pct``/100).
+
+    Returns
+    -------
+    truth : numpy.ndarray, shape (K + 1, 3)
+        True poses (mm, mm, rad), our frame, from the start.
+    estimates : dict of str to numpy.ndarray, shape (K + 1, 3)
+        Odometry poses by method, from the start.
+    """
+    travel = odo.plan_wheel_travel(rounded_square(clockwise=clockwise,
+                                                  corner_radius_mm=corner_radius_mm),
+                                   WHEEL_BASE_MM, step_mm)
+    start = np.zeros((1, 3))
+    truth = np.vstack([start, odo.integrate(np.diff(travel, axis=0), 1.0, WHEEL_BASE_MM)])
+    e = diameter_error_pct / 100.0
+    counts_per_mm = STEPS_PER_MM / np.array([1.0 - e / 2.0, 1.0 + e / 2.0])
+    increments = odo.encoder_increments(travel * counts_per_mm / STEPS_PER_MM, STEPS_PER_MM)
+    assumed_base = WHEEL_BASE_MM * (1.0 + base_error_pct / 100.0)
+    estimates = {m: np.vstack([start, odo.integrate(increments, STEPS_PER_MM, assumed_base, m)])
+                 for m in methods}
+    return truth, estimates
+
+
+def _setup():
+    fig, ax = plt.subplots(figsize=(5.2, 4.6))
+    ax.set_aspect("equal")
+    ax.set_xlim(-300, 1300)
+    ax.set_ylim(-700, 700)
+    ax.set_xlabel("x (mm), forward at the start")
+    ax.set_ylabel("y (mm), left at the start")
+    ax.grid(True, lw=0.3, alpha=0.5)
+    truth = ax.plot([], [], color="k", lw=2.0, label="true path")[0]
+    exact = ax.plot([], [], color="#1f77b4", lw=1.3, label="odometry, exact arc")[0]
+    euler = ax.plot([], [], color="#ff7f0e", lw=1.1, ls="--", label="odometry, Euler")[0]
+    ax.plot([0], [0], marker="o", color="k", ms=5, ls="none")
+    ends = ax.plot([], [], marker="x", color="#1f77b4", ms=8, ls="none")[0]
+    ax.legend(loc="upper right", fontsize=7)
+    text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=8, va="bottom",
+                   family="monospace", bbox={"fc": "white", "ec": "#999999", "alpha": 0.9})
+    message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center",
+                      color="#b35900", fontsize=10, bbox={"fc": "white", "ec": "#b35900"})
+    message.set_visible(False)
+    fig.tight_layout()
+    return fig, {"ax": ax, "truth": truth, "exact": exact, "euler": euler, "ends": ends,
+                 "text": text, "message": message}
+
+
+def _update(state, step_mm, diameter_error_pct, base_error_pct, direction):
+    try:
+        truth, est = simulate_square(float(step_mm), float(diameter_error_pct),
+                                     float(base_error_pct),
+                                     clockwise=(direction == "clockwise"))
+    except ValueError as exc:  # a value the model rejects: say so, draw nothing
+        state["message"].set_text(str(exc))
+        state["message"].set_visible(True)
+        for key in ("truth", "exact", "euler", "ends"):
+            state[key].set_data([], [])
+        state["text"].set_text("")
+        return
+    state["message"].set_visible(False)
+    state["truth"].set_data(truth[:, 0], truth[:, 1])
+    state["exact"].set_data(est["exact"][:, 0], est["exact"][:, 1])
+    state["euler"].set_data(est["euler"][:, 0], est["euler"][:, 1])
+    state["ends"].set_data([est["exact"][-1, 0]], [est["exact"][-1, 1]])
+    err = {m: float(np.hypot(*(p[-1, :2] - truth[-1, :2]))) for m, p in est.items()}
+    head = {m: math.degrees(p[-1, 2] - truth[-1, 2]) for m, p in est.items()}
+    state["text"].set_text(
+        f"{len(truth) - 1} updates of <= {float(step_mm):g} mm\n"
+        f"end error, exact: {err['exact']:7.1f} mm {head['exact']:+6.2f} deg\n"
+        f"end error, Euler: {err['euler']:7.1f} mm {head['euler']:+6.2f} deg")
+
+
+@register("odometry.square")
+def square_panel() -> Panel:
+    """Step size, wheel-diameter mismatch and wheel-base error on a 1 m rounded square."""
+    style = {"description_width": "initial"}
+    layout = widgets.Layout(width="420px")
+    controls = {
+        "step_mm": widgets.SelectionSlider(options=list(STEP_OPTIONS), value=10,
+                                           description="update step (mm)", style=style,
+                                           layout=layout),
+        "diameter_error_pct": widgets.FloatSlider(value=0.0, min=-2.0, max=2.0, step=0.1,
+                                                  description="right wheel larger by (%)",
+                                                  style=style, layout=layout),
+        "base_error_pct": widgets.FloatSlider(value=0.0, min=-10.0, max=10.0, step=0.5,
+                                              description="assumed wheel base off by (%)",
+                                              style=style, layout=layout),
+        "direction": widgets.Dropdown(options=["counter-clockwise", "clockwise"],
+                                      value="counter-clockwise", description="direction",
+                                      style=style),
+    }
+    return Panel(controls, _setup, _update,
+                 title="Dead reckoning a 1 m square (rounded corners, r = 150 mm)")
