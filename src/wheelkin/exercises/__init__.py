@@ -23,6 +23,7 @@ True
 
 from __future__ import annotations
 
+import copy
 import importlib
 import inspect
 import itertools
@@ -183,25 +184,29 @@ class Exercise:
             return self._fail("raised", f"expected a function, got {type(fn).__name__}")
         for case in self.cases:
             where = case.describe(self.arg_names)
-            expected = np.asarray(self.reference(*case.args, **case.kwargs), dtype=float)
+            expected = _as_array(self.reference(*case.args, **case.kwargs))
+            args, kwargs = copy.deepcopy(case.args), copy.deepcopy(case.kwargs)
             try:
-                raw = fn(*case.args, **case.kwargs)
+                raw = fn(*args, **kwargs)
             except NotImplementedError:
                 return self._fail("not-written", "not written yet: replace the "
                                   "`raise NotImplementedError` with your code, then run the "
                                   "check again.")
-            except Exception as exc:  # noqa: BLE001 - any error becomes a message
+            except Exception as exc:
                 return self._fail("raised",
                                   f"for {where} your function raised {type(exc).__name__}: {exc}")
+            if raw is None:
+                return self._fail("shape", f"for {where} your function returned None: did you "
+                                  "forget the `return`?")
             try:
-                got = np.asarray(raw, dtype=float)
+                got = _as_array(raw)
             except (TypeError, ValueError):
                 return self._fail("shape", f"for {where} you returned {raw!r}, which is not a "
                                   "number or an array of numbers")
             if got.shape != expected.shape:
                 return self._fail("shape", f"for {where} you returned shape {got.shape} "
                                   f"({_fmt(raw)}), expected shape {expected.shape}")
-            if not np.all(np.isfinite(got)):
+            if np.any(np.isnan(got)) or np.any(np.isinf(got) & np.isfinite(expected)):
                 return self._fail("nan", f"for {where} your answer contains NaN or infinity: "
                                   f"{_fmt(got)}")
             if self._close(got, expected):
@@ -215,8 +220,9 @@ class Exercise:
         head = f"for {where} you returned {_fmt(got)}, expected {_fmt(expected)}"
         for wrong, text in self.mistakes:
             try:
-                candidate = np.asarray(wrong(*case.args, **case.kwargs), dtype=float)
-            except Exception:  # noqa: BLE001, S112 - a mistake model that cannot run is skipped
+                candidate = _as_array(wrong(*copy.deepcopy(case.args),
+                                            **copy.deepcopy(case.kwargs)))
+            except Exception:  # a mistake model that cannot run on this case is skipped
                 continue
             if self._close(got, candidate):
                 return self._fail("specific", f"{head}: {text}")
@@ -262,7 +268,16 @@ class Exercise:
         return None
 
 
+def _as_array(value) -> np.ndarray:
+    """A float array from a number, a sequence, or an object with ``as_array()`` (a Pose ...)."""
+    if hasattr(value, "as_array") and callable(value.as_array):
+        value = value.as_array()
+    return np.asarray(value, dtype=float)
+
+
 def _common_ratio(got: np.ndarray, expected: np.ndarray) -> float | None:
+    if not (np.all(np.isfinite(got)) and np.all(np.isfinite(expected))):
+        return None
     mask = np.abs(expected) > 1e-12
     if not np.any(mask) or np.any(np.abs(got[~mask]) > 1e-12):
         return None
@@ -276,6 +291,8 @@ def _fmt(value) -> str:
     arr = np.asarray(value) if not isinstance(value, str) else None
     if arr is None or arr.dtype == object:
         return repr(value)
+    if np.issubdtype(arr.dtype, np.floating):
+        arr = arr + 0.0  # no "-0." in messages
     if arr.ndim == 0:
         return f"{float(arr):.6g}" if np.issubdtype(arr.dtype, np.number) else repr(value)
     with np.printoptions(precision=6, suppress=True):
