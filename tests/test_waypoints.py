@@ -448,3 +448,26 @@ def test_exercises_pass_with_the_reference_and_explain_the_labs_mistakes():
     # the hand value of the lab's quarter circle: (pi/2)(0.5 + 0.06)/(0.04 * 7.5)
     assert ex.quarter_circle_duration(0.5, 0.06, 0.04, 7.5) == pytest.approx(
         math.pi / 2 * 0.56 / 0.3)
+
+
+def test_planned_pose_and_wheel_angles_follow_the_ideal_robot():
+    segs = wp.plan_segments(wp.LAB_WAYPOINTS)
+    cmds = wp.schedule(segs, R_W, D)
+    times = wp.schedule_times(cmds)
+    rng = np.random.default_rng(3)
+    for i, c in enumerate(cmds):
+        # closed-form drive from the segment's start for part of the command
+        tau = rng.uniform(0, c.duration)
+        expected = _drive(c.segment.start, c.left_rate, c.right_rate, tau)
+        np.testing.assert_allclose(wp.planned_pose(cmds, times[i] + tau), expected, atol=1e-9)
+    np.testing.assert_allclose(wp.planned_pose(cmds, [-1.0, times[-1] + 5]),
+                               [segs[0].start, segs[-1].end])
+    # wheel angles: the rates integrated; at the end, the left side rolled the path length
+    # minus the turns (left turns: the left wheel is inner) -- check by summing by hand
+    ang = wp.planned_wheel_angles(cmds, times)
+    by_hand = np.cumsum([[c.left_rate * c.duration, c.right_rate * c.duration] for c in cmds],
+                        axis=0)
+    np.testing.assert_allclose(ang[1:], by_hand)
+    # heading from the wheels equals the planned heading (ideal robot)
+    heading = segs[0].start[2] + R_W * (ang[:, 1] - ang[:, 0]) / (2 * D)
+    np.testing.assert_allclose(heading, wp.planned_pose(cmds, times)[:, 2], atol=1e-9)

@@ -59,6 +59,8 @@ __all__ = [
     "average_encoder_odometry",
     "distance_to_walls",
     "plan_segments",
+    "planned_pose",
+    "planned_wheel_angles",
     "quantise",
     "sample_path",
     "schedule",
@@ -427,6 +429,44 @@ def schedule_times(commands) -> np.ndarray:
     """
     cmds = _check_commands(commands)
     return np.concatenate([[0.0], np.cumsum([c.duration for c in cmds])])
+
+
+def planned_pose(commands, t) -> np.ndarray:
+    """Pose (..., 3) of an ideal (non-slipping) robot playing ``commands`` at times ``t`` (s).
+
+    Before 0 it is the first segment's start, after the last command the last one's end.
+
+    >>> cmds = schedule(plan_segments(LAB_WAYPOINTS), 0.04, 0.06)
+    >>> planned_pose(cmds, [0.0, 8.3333333333]).round(4).tolist()
+    [[1.5, -1.5, 1.5708], [1.5, 1.0, 1.5708]]
+    """
+    cmds = _check_commands(commands)
+    tt = v.finite_array("t", t)
+    times = schedule_times(cmds)
+    k = np.clip(np.searchsorted(times, tt, side="right") - 1, 0, len(cmds) - 1)
+    out = np.empty((*tt.shape, 3))
+    for i, c in enumerate(cmds):
+        mask = k == i
+        if np.any(mask):
+            frac = np.clip((tt[mask] - times[i]) / c.duration, 0.0, 1.0)
+            out[mask] = c.segment.pose_at(frac)
+    return out
+
+
+def planned_wheel_angles(commands, t) -> np.ndarray:
+    """Cumulative wheel angles (..., 2), columns (left, right), in rad, of ``commands`` at
+    times ``t`` (s): the integral of the scheduled rates, held after the last command.
+
+    >>> cmds = schedule(plan_segments([[0, 0], [0.3, 0]]), 0.04, 0.06)
+    >>> planned_wheel_angles(cmds, [0.5, 2.0]).tolist()
+    [[3.75, 3.75], [7.5, 7.5]]
+    """
+    cmds = _check_commands(commands)
+    tt = v.finite_array("t", t)
+    times = schedule_times(cmds)
+    left = np.concatenate([[0.0], np.cumsum([c.left_rate * c.duration for c in cmds])])
+    right = np.concatenate([[0.0], np.cumsum([c.right_rate * c.duration for c in cmds])])
+    return np.stack([np.interp(tt, times, left), np.interp(tt, times, right)], axis=-1)
 
 
 def _check_commands(commands) -> list[WheelCommand]:
