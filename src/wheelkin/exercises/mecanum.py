@@ -1,0 +1,174 @@
+"""Exercises of the mecanum chapter (notebooks/04_mecanum.ipynb).
+
+Wheel order FL, FR, RL, RR; our frame (x forward, y left, omega counter-clockwise); SI.
+
+>>> from wheelkin.exercises import check
+>>> import numpy as np
+>>> def strafe_rates(speed, wheel_radius):
+...     return np.array([-1.0, 1.0, 1.0, -1.0]) * speed   # forgot the wheel radius
+>>> print(check("mecanum.strafe_rates", strafe_rates).message)  # doctest: +ELLIPSIS
+✘ mecanum.strafe_rates: for speed=1, wheel_radius=0.05 ...: these are rim speeds (m/s)...
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from wheelkin.exercises import Case, Exercise
+from wheelkin.mecanum import MecanumGeometry, forward_kinematics, inverse_kinematics
+
+__all__ = ["max_spin_rate", "rates_60", "strafe_rates", "twist_from_rates"]
+
+WHEELS = ("FL", "FR", "RL", "RR")
+_ROLLERS = np.array([-1.0, 1.0, 1.0, -1.0])
+
+
+# --- 1. a pure strafe ---------------------------------------------------------------------
+
+def strafe_rates(speed, wheel_radius):
+    """Wheel rates (FL, FR, RL, RR), rad/s, that strafe left at ``speed`` m/s (45° rollers)."""
+    # The half wheelbase and half track do not matter for a pure strafe (omega = 0).
+    return inverse_kinematics(0.0, speed, 0.0, MecanumGeometry(wheel_radius, 1.0, 1.0))
+
+
+Exercise(
+    "mecanum.strafe_rates",
+    "Return the wheel rates (FL, FR, RL, RR) in rad/s that move the vehicle straight to the "
+    "left at `speed` m/s (negative: to the right) without turning; 45-degree rollers, X "
+    "arrangement, wheel radius `wheel_radius` m.",
+    strafe_rates,
+    [Case((1.0, 0.05)), Case((-0.5, 0.0762)), Case((2.0, 0.1))],
+    wheel_names=WHEELS,
+    mistakes=[
+        (lambda speed, wheel_radius: _ROLLERS * speed,
+         "these are rim speeds (m/s): divide by the wheel radius to get rad/s."),
+        (lambda speed, wheel_radius: -_ROLLERS * speed / wheel_radius,
+         "that strafes to the right. In our frame y points left, so a left strafe is vy > 0 "
+         "(in the document's frame it would be X < 0: X points right)."),
+        (lambda speed, wheel_radius: np.full(4, speed / wheel_radius),
+         "all four wheels turning the same way drive forwards, not sideways: on a strafe "
+         "the wheels on each diagonal turn together, against the other diagonal."),
+    ],
+)
+
+
+# --- 2. the twist from four wheel rates ------------------------------------------------------
+
+def twist_from_rates(rates, wheel_radius, half_wheelbase, half_track):
+    """The body twist (vx m/s, vy m/s, omega rad/s) from wheel rates FL, FR, RL, RR (rad/s)."""
+    g = MecanumGeometry(wheel_radius, half_wheelbase, half_track)
+    return forward_kinematics(rates, g)
+
+
+def _twist_full_dims(rates, wheel_radius, half_wheelbase, half_track):
+    g = MecanumGeometry(wheel_radius, 2 * half_wheelbase, 2 * half_track)
+    return forward_kinematics(rates, g)
+
+
+def _twist_no_quarter(rates, wheel_radius, half_wheelbase, half_track):
+    return 4.0 * twist_from_rates(rates, wheel_radius, half_wheelbase, half_track)
+
+
+def _twist_k_times(rates, wheel_radius, half_wheelbase, half_track):
+    out = twist_from_rates(rates, wheel_radius, half_wheelbase, half_track)
+    k = half_wheelbase + half_track
+    return np.array([out[0], out[1], out[2] * k * k])
+
+
+Exercise(
+    "mecanum.twist_from_rates",
+    "Given the four wheel rates `rates` = (FL, FR, RL, RR) in rad/s, return the body twist "
+    "(vx, vy, omega) in m/s and rad/s (least squares when the rates are inconsistent).",
+    twist_from_rates,
+    [
+        Case((np.array([10.0, 10.0, 10.0, 10.0]), 0.05, 0.2, 0.15)),
+        Case((np.array([-20.0, 20.0, 20.0, -20.0]), 0.05, 0.2, 0.15)),
+        Case((np.array([-7.0, 7.0, -7.0, 7.0]), 0.05, 0.2, 0.15)),
+        Case((np.array([3.0, 11.0, 5.0, 1.0]), 0.0762, 0.3048, 0.2286)),
+        Case((np.array([12.0, 10.0, -8.0, -10.0]), 0.0762, 0.3048, 0.2286)),
+    ],
+    mistakes=[
+        (_twist_full_dims,
+         "omega is half the right value: the lever arm k is half_wheelbase + half_track, "
+         "not the full length plus the full width."),
+        (_twist_no_quarter,
+         "4 times too large: each of the four wheels contributes a quarter (r/4)."),
+        (_twist_k_times,
+         "omega is off by k squared: the forward map divides by k = a + b (the inverse "
+         "multiplies)."),
+    ],
+)
+
+
+# --- 3. 60-degree rollers --------------------------------------------------------------------
+
+def rates_60(vx, vy, omega, wheel_radius, half_wheelbase, half_track):
+    """Wheel rates FL, FR, RL, RR (rad/s) for rollers at 60 degrees to the axle."""
+    g = MecanumGeometry(wheel_radius, half_wheelbase, half_track, roller_angle=math.pi / 3)
+    return inverse_kinematics(vx, vy, omega, g)
+
+
+def _rates_45(vx, vy, omega, wheel_radius, half_wheelbase, half_track):
+    return inverse_kinematics(vx, vy, omega,
+                              MecanumGeometry(wheel_radius, half_wheelbase, half_track))
+
+
+def _rates_tan(vx, vy, omega, wheel_radius, half_wheelbase, half_track):
+    g = MecanumGeometry(wheel_radius, half_wheelbase, half_track, roller_angle=math.pi / 6)
+    return inverse_kinematics(vx, vy, omega, g)
+
+
+def _rates_k_plain(vx, vy, omega, wheel_radius, half_wheelbase, half_track):
+    c = 1.0 / math.tan(math.pi / 3)
+    k = half_wheelbase + half_track
+    sig = np.array([-1.0, 1.0, -1.0, 1.0])
+    return (vx + _ROLLERS * c * vy + sig * k * omega) / wheel_radius
+
+
+Exercise(
+    "mecanum.rates_60",
+    "Return the wheel rates (FL, FR, RL, RR) in rad/s for the twist (vx, vy, omega) when the "
+    "rollers sit at 60 degrees to the wheel's axle (X arrangement).",
+    rates_60,
+    [
+        Case((1.0, 0.0, 0.0, 0.05, 0.2, 0.15)),
+        Case((0.0, 1.0, 0.0, 0.05, 0.2, 0.15)),
+        Case((0.0, 0.0, 1.0, 0.05, 0.2, 0.15)),
+        Case((0.5, -0.3, 0.8, 0.0762, 0.3048, 0.2286)),
+    ],
+    wheel_names=WHEELS,
+    mistakes=[
+        (_rates_k_plain, "the sideways term is right, but the lever arm is k = b + a cot(gamma) "
+                         "(the front-back offset a reaches the wheel through the rollers "
+                         "too), not a + b."),
+        (_rates_45, "that is the 45-degree answer: the sideways term is multiplied by "
+                    "cot(gamma), which is 1/sqrt(3) at 60 degrees, not 1."),
+        (_rates_tan, "you used tan(60°) where cot(60°) belongs: gamma is measured from the "
+                     "axle, not from the wheel's rolling direction."),
+    ],
+)
+
+
+# --- 4. the fastest spin ---------------------------------------------------------------------
+
+def max_spin_rate(max_rim_speed, half_wheelbase, half_track):
+    """The fastest spin on the spot (rad/s) if no wheel rim may exceed ``max_rim_speed`` m/s."""
+    return max_rim_speed / (half_wheelbase + half_track)
+
+
+Exercise(
+    "mecanum.max_spin_rate",
+    "With every wheel's rim speed limited to `max_rim_speed` m/s, how fast (rad/s) can the "
+    "vehicle spin on the spot? (45-degree rollers)",
+    max_spin_rate,
+    [Case((4.572, 0.3048, 0.2286)), Case((1.0, 0.2, 0.15)), Case((2.0, 0.1, 0.3))],
+    mistakes=[
+        (lambda max_rim_speed, half_wheelbase, half_track:
+         max_rim_speed / math.hypot(half_wheelbase, half_track),
+         "you divided by the distance from the centre to a wheel, sqrt(a² + b²): right for a "
+         "wheel that rolls along the circle, but a mecanum wheel rolls along x and its rollers "
+         "take the rest, so the lever arm is k = a + b."),
+    ],
+)

@@ -1,0 +1,618 @@
+r"""The four-wheel mecanum vehicle: inverse and forward kinematics, for any roller angle.
+
+Frame and units: our frame (REP-103: x forward, y left, yaw rate :math:`\omega`
+counter-clockwise positive), SI (m, s, rad). Wheel order is always **FL, FR, RL, RR**
+(front-left, front-right, rear-left, rear-right).
+
+Geometry (the chapter's symbols)
+
+- :math:`r_w` wheel radius (``wheel_radius``);
+- :math:`a` half wheelbase, from the centre to the front and rear axles along x
+  (``half_wheelbase``); the wheels sit at :math:`x_i = \pm a`;
+- :math:`b` half track, from the centre to each wheel's mid-plane along y (``half_track``);
+  the wheels sit at :math:`y_i = \pm b`;
+- :math:`\gamma` the angle between a roller's axis and its wheel's axle (``roller_angle``,
+  :math:`\pi/4` for the common mecanum wheel; an omni wheel would be :math:`\pi/2`).
+
+The rollers are in the "X" arrangement: seen from above, the (upper) rollers of the four wheels
+point towards the vehicle's centre, so the rollers touching the ground form an "O". Then a
+forward-and-left twist needs FL and RR slower than FR and RL.
+
+Rolling constraint of wheel *i*, at :math:`(x_i, y_i)`, whose contact point moves at
+:math:`(v_x - \omega y_i,\ v_y + \omega x_i)`: the rollers absorb any velocity across their
+axes; the component along a roller's axis must come from the hub. That gives
+
+.. math::
+
+    \varphi_i = \frac{1}{r_w}\left[(v_x - \omega y_i) + s_i \cot\gamma\,(v_y + \omega x_i)
+    \right],\qquad s = (-1, +1, +1, -1)\ \text{for (FL, FR, RL, RR)}
+
+and, with :math:`k = b + a\cot\gamma` (:math:`k = a + b` at 45 degrees),
+
+.. math::
+
+    \begin{aligned}
+    \varphi_{FL} &= (v_x - v_y\cot\gamma - k\,\omega)/r_w, &
+    \varphi_{FR} &= (v_x + v_y\cot\gamma + k\,\omega)/r_w, \\
+    \varphi_{RL} &= (v_x + v_y\cot\gamma - k\,\omega)/r_w, &
+    \varphi_{RR} &= (v_x - v_y\cot\gamma + k\,\omega)/r_w.
+    \end{aligned}
+
+The 4x3 matrix :math:`J` of this map has orthogonal columns, so its pseudo-inverse (the
+forward map) is a scaled transpose, and the one wheel combination it cannot produce,
+:math:`(+1, +1, -1, -1)` (front wheels against rear wheels), is its null space: wheels
+turning that way fight each other and the vehicle does not move.
+
+The mecanum simulator document :cite:`florida2014mecanum` uses X right, Y forward and feet;
+the converters between its frame and ours live in :mod:`wheelkin.frames`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from wheelkin import _validate as v
+from wheelkin.frames import Pose, Twist, wrap_angle
+from wheelkin.units import FOOT
+
+__all__ = [
+    "DOCUMENT_MAX_SPEED",
+    "EXAMPLE_GEOMETRY",
+    "FIGHTING_PATTERN",
+    "ROLLER_SIGNS",
+    "SPIN_SIGNS",
+    "WHEEL_NAMES",
+    "MecanumGeometry",
+    "SpeedLimit",
+    "circle_speed",
+    "circle_twist",
+    "fighting_component",
+    "forward_kinematics",
+    "forward_matrix",
+    "go_to_point_twist",
+    "inverse_kinematics",
+    "inverse_matrix",
+    "limit_speed",
+    "max_rim_speed",
+]
+
+#: Wheel order of every array in this module.
+WHEEL_NAMES: tuple[str, ...] = ("FL", "FR", "RL", "RR")
+#: :math:`s_i`, the sign of the :math:`v_y` term of each wheel (FL, FR, RL, RR), X arrangement.
+ROLLER_SIGNS = np.array([-1.0, 1.0, 1.0, -1.0])
+#: :math:`\sigma_i`, the sign of the :math:`\omega` term of each wheel (FL, FR, RL, RR).
+SPIN_SIGNS = np.array([-1.0, 1.0, -1.0, 1.0])
+#: Wheel rates (FL, FR, RL, RR) that produce no motion: the null space of the inverse matrix.
+FIGHTING_PATTERN = np.array([1.0, 1.0, -1.0, -1.0])
+#: The document's top speed, 15 ft/s, in m/s (4.572 m/s).
+DOCUMENT_MAX_SPEED = 15.0 * FOOT
+
+
+@dataclass(frozen=True)
+class MecanumGeometry:
+    """Dimensions of a four-wheel mecanum vehicle (m, rad), validated on construction.
+
+    Parameters
+    ----------
+    wheel_radius : float
+        :math:`r_w`, m, > 0.
+    half_wheelbase : float
+        :math:`a`, centre to the front (and rear) axle along x, m, > 0.
+    half_track : float
+        :math:`b`, centre to each wheel's mid-plane along y, m, > 0.
+    roller_angle : float
+        :math:`\\gamma`, angle between a roller's axis and the wheel's axle, rad, in
+        (0, pi/2); default pi/4.
+
+    Examples
+    --------
+    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> round(g.k, 6)
+    0.35
+    >>> MecanumGeometry(0.05, -0.2, 0.15)
+    Traceback (most recent call last):
+    ...
+    ValueError: half_wheelbase must be a finite number > 0, got -0.2
+    """
+
+    wheel_radius: float
+    half_wheelbase: float
+    half_track: float
+    roller_angle: float = math.pi / 4
+
+    def __post_init__(self) -> None:
+        for name in ("wheel_radius", "half_wheelbase", "half_track"):
+            object.__setattr__(self, name, v.positive(name, getattr(self, name)))
+        gamma = v.finite("roller_angle", self.roller_angle)
+        if not 0.0 < gamma < math.pi / 2:
+            raise ValueError(
+                f"roller_angle must be in (0, pi/2) rad (exclusive), got {self.roller_angle!r}"
+            )
+        object.__setattr__(self, "roller_angle", gamma)
+
+    @property
+    def lateral_factor(self) -> float:
+        """:math:`\\cot\\gamma`: how much a sideways velocity turns the wheels (1 at 45 deg)."""
+        return 1.0 / math.tan(self.roller_angle)
+
+    @property
+    def k(self) -> float:
+        """:math:`k = b + a\\cot\\gamma`, m: the yaw lever arm (:math:`a + b` at 45 deg)."""
+        return self.half_track + self.half_wheelbase * self.lateral_factor
+
+
+#: The vehicle the chapter uses (our choice; the document gives no dimensions): 6-inch wheels
+#: (r_w = 3 in), axles 1 ft ahead of and behind the centre, wheels 9 in either side of it.
+EXAMPLE_GEOMETRY = MecanumGeometry(
+    wheel_radius=0.25 * FOOT, half_wheelbase=1.0 * FOOT, half_track=0.75 * FOOT
+)
+
+
+def _geometry(geometry) -> MecanumGeometry:
+    if not isinstance(geometry, MecanumGeometry):
+        raise ValueError(
+            f"geometry must be a MecanumGeometry, got {type(geometry).__name__}"
+        )
+    return geometry
+
+
+def _broadcast(**arrays: np.ndarray) -> list[np.ndarray]:
+    try:
+        return list(np.broadcast_arrays(*arrays.values()))
+    except ValueError:
+        shapes = ", ".join(f"{n} {np.shape(a)}" for n, a in arrays.items())
+        raise ValueError(f"{', '.join(arrays)} must have broadcastable shapes, got {shapes}"
+                         ) from None
+
+
+def inverse_matrix(geometry: MecanumGeometry) -> np.ndarray:
+    r"""The 4x3 matrix :math:`J` with :math:`\varphi = J\,(v_x, v_y, \omega)^T`.
+
+    Rows FL, FR, RL, RR; columns :math:`v_x, v_y, \omega`:
+
+    .. math::
+
+        J = \frac{1}{r_w}\begin{bmatrix}
+        1 & -\cot\gamma & -k\\ 1 & \cot\gamma & k\\ 1 & \cot\gamma & -k\\ 1 & -\cot\gamma & k
+        \end{bmatrix},\qquad k = b + a\cot\gamma .
+
+    Parameters
+    ----------
+    geometry : MecanumGeometry
+
+    Returns
+    -------
+    numpy.ndarray, shape (4, 3)
+        Entries in 1/m (columns 1, 2) and 1 (column 3): rad/s of wheel per m/s or rad/s.
+
+    Examples
+    --------
+    >>> inverse_matrix(MecanumGeometry(0.5, 0.2, 0.3))
+    array([[ 2., -2., -1.],
+           [ 2.,  2.,  1.],
+           [ 2.,  2., -1.],
+           [ 2., -2.,  1.]])
+    """
+    g = _geometry(geometry)
+    cols = np.column_stack(
+        [np.ones(4), ROLLER_SIGNS * g.lateral_factor, SPIN_SIGNS * g.k]
+    )
+    return cols / g.wheel_radius
+
+
+def forward_matrix(geometry: MecanumGeometry) -> np.ndarray:
+    r"""The 3x4 pseudo-inverse :math:`J^+ = (J^TJ)^{-1}J^T` of :func:`inverse_matrix`.
+
+    The columns of :math:`J` are orthogonal, so
+
+    .. math::
+
+        J^+ = \frac{r_w}{4}\begin{bmatrix}
+        1 & 1 & 1 & 1\\
+        -\tan\gamma & \tan\gamma & \tan\gamma & -\tan\gamma\\
+        -1/k & 1/k & -1/k & 1/k
+        \end{bmatrix}.
+
+    Columns FL, FR, RL, RR; rows :math:`v_x` (m/s), :math:`v_y` (m/s), :math:`\omega`
+    (rad/s) per rad/s of wheel.
+
+    Examples
+    --------
+    >>> g = MecanumGeometry(0.5, 0.2, 0.3)
+    >>> forward_matrix(g)
+    array([[ 0.125,  0.125,  0.125,  0.125],
+           [-0.125,  0.125,  0.125, -0.125],
+           [-0.25 ,  0.25 , -0.25 ,  0.25 ]])
+    >>> np.allclose(forward_matrix(g) @ inverse_matrix(g), np.eye(3))
+    True
+    """
+    g = _geometry(geometry)
+    rows = np.vstack(
+        [np.ones(4), ROLLER_SIGNS / g.lateral_factor, SPIN_SIGNS / g.k]
+    )
+    return rows * (g.wheel_radius / 4.0)
+
+
+def inverse_kinematics(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
+    r"""Wheel angular rates (FL, FR, RL, RR), rad/s, that produce the body twist.
+
+    .. math::
+
+        \varphi_{FL} = \frac{v_x - v_y\cot\gamma - k\omega}{r_w},\
+        \varphi_{FR} = \frac{v_x + v_y\cot\gamma + k\omega}{r_w},\
+        \varphi_{RL} = \frac{v_x + v_y\cot\gamma - k\omega}{r_w},\
+        \varphi_{RR} = \frac{v_x - v_y\cot\gamma + k\omega}{r_w}
+
+    with :math:`k = b + a\cot\gamma`; at :math:`\gamma = 45^\circ`, :math:`\cot\gamma = 1` and
+    :math:`k = a + b`. Positive rates roll the wheel forward (+x).
+
+    Parameters
+    ----------
+    vx, vy : float or array_like
+        Body velocity of the centre, m/s (x forward, y left).
+    omega : float or array_like
+        Yaw rate, rad/s, counter-clockwise positive.
+        The three are broadcast together.
+    geometry : MecanumGeometry
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+        Wheel rates in the order FL, FR, RL, RR, rad/s.
+
+    Examples
+    --------
+    Strafe left at 1 m/s on wheels of radius 0.05 m:
+
+    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> inverse_kinematics(0.0, 1.0, 0.0, g)
+    array([-20.,  20.,  20., -20.])
+    >>> inverse_kinematics([1.0, 0.0], 0.0, [0.0, 1.0], g)
+    array([[20., 20., 20., 20.],
+           [-7.,  7., -7.,  7.]])
+    """
+    g = _geometry(geometry)
+    vx_a, vy_a, w_a = _broadcast(vx=v.finite_array("vx", vx), vy=v.finite_array("vy", vy),
+                                 omega=v.finite_array("omega", omega))
+    twist = np.stack([vx_a, vy_a, w_a], axis=-1)
+    return twist @ inverse_matrix(g).T
+
+
+def forward_kinematics(wheel_rates, geometry: MecanumGeometry) -> np.ndarray:
+    r"""The body twist (vx, vy, omega) that best explains four wheel rates (least squares).
+
+    .. math::
+
+        \begin{aligned}
+        v_x &= \tfrac{r_w}{4}(\varphi_{FL} + \varphi_{FR} + \varphi_{RL} + \varphi_{RR}),\\
+        v_y &= \tfrac{r_w\tan\gamma}{4}(-\varphi_{FL} + \varphi_{FR} + \varphi_{RL}
+               - \varphi_{RR}),\\
+        \omega &= \tfrac{r_w}{4k}(-\varphi_{FL} + \varphi_{FR} - \varphi_{RL}
+               + \varphi_{RR}).
+        \end{aligned}
+
+    Exact (the inverse of :func:`inverse_kinematics`) when the rates are consistent, i.e. when
+    their :func:`fighting_component` is zero; otherwise that component is ignored (it moves
+    nothing).
+
+    Parameters
+    ----------
+    wheel_rates : array_like, shape (..., 4)
+        Wheel angular rates FL, FR, RL, RR, rad/s.
+    geometry : MecanumGeometry
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        (vx m/s, vy m/s, omega rad/s) in the body frame.
+
+    Examples
+    --------
+    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> forward_kinematics([-20.0, 20.0, 20.0, -20.0], g)
+    array([0., 1., 0.])
+    >>> forward_kinematics([10.0, 10.0, -10.0, -10.0], g)  # the wheels fight: no motion
+    array([0., 0., 0.])
+    """
+    g = _geometry(geometry)
+    rates = v.shaped("wheel_rates", wheel_rates, (4,))
+    return rates @ forward_matrix(g).T
+
+
+def fighting_component(wheel_rates) -> np.ndarray:
+    r"""How much of the wheel rates is the no-motion pattern (+1, +1, -1, -1), rad/s.
+
+    Any four rates split uniquely into a part that moves the vehicle and
+    :math:`c\,(1, 1, -1, -1)` (FL, FR, RL, RR) with
+
+    .. math:: c = \tfrac14(\varphi_{FL} + \varphi_{FR} - \varphi_{RL} - \varphi_{RR}).
+
+    A non-zero :math:`c` cannot be satisfied by rolling: the rollers must slip (and the wheels
+    push against each other). The pattern is the same for every roller angle and geometry.
+
+    Parameters
+    ----------
+    wheel_rates : array_like, shape (..., 4)
+        FL, FR, RL, RR, rad/s.
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+
+    Examples
+    --------
+    >>> fighting_component([12.0, 10.0, -8.0, -10.0])
+    array(10.)
+    """
+    rates = v.shaped("wheel_rates", wheel_rates, (4,))
+    return np.asarray(rates @ FIGHTING_PATTERN / 4.0)
+
+
+def max_rim_speed(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
+    r"""The fastest wheel's rim speed :math:`r_w\max_i|\varphi_i|`, m/s, for a body twist.
+
+    Every sign combination of the :math:`v_y` and :math:`\omega` terms occurs on one of the
+    four wheels, so
+
+    .. math:: r_w \max_i |\varphi_i| = |v_x| + |v_y|\cot\gamma + k|\omega| .
+
+    This, not the body speed :math:`\sqrt{v_x^2+v_y^2}`, is what the motors limit.
+
+    Examples
+    --------
+    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> float(max_rim_speed(1.0, 1.0, 0.0, g))  # diagonal: body speed 1.414 m/s
+    2.0
+    """
+    g = _geometry(geometry)
+    vx_a, vy_a, w_a = _broadcast(vx=v.finite_array("vx", vx), vy=v.finite_array("vy", vy),
+                                 omega=v.finite_array("omega", omega))
+    return np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k
+
+
+class SpeedLimit(NamedTuple):
+    """Result of :func:`limit_speed`: the twist to execute, its scale factor, and why."""
+
+    twist: tuple[float, float, float]
+    #: 1.0 within the limit; 0 < scale < 1 when scaled; 0.0 when refused.
+    scale: float
+    reason: str
+
+
+def limit_speed(twist, max_speed, geometry: MecanumGeometry | None = None, *,
+                refuse: bool = False) -> SpeedLimit:
+    r"""Check a body twist against a top speed; scale it down, or refuse it, saying why.
+
+    Two limits are checked:
+
+    - the body speed :math:`\sqrt{v_x^2+v_y^2} \le v_{max}` (the document's rule);
+    - if ``geometry`` is given, also the fastest wheel's rim speed
+      :math:`|v_x| + |v_y|\cot\gamma + k|\omega| \le v_{max}` (what a motor limits: the
+      vehicle reaches :math:`v_{max}` driving straight ahead with every wheel at full speed).
+
+    A twist over a limit is multiplied by :math:`s = v_{max}/\text{speed} < 1` (all three
+    components, so the path keeps its shape and is only driven more slowly), or with
+    ``refuse=True`` replaced by the zero twist. Nothing is ever clipped silently: ``reason``
+    says what was checked and what was done.
+
+    Parameters
+    ----------
+    twist : Twist or array_like, shape (3,)
+        (vx m/s, vy m/s, omega rad/s), body frame. One command at a time.
+    max_speed : float
+        m/s, > 0 (the document's 15 ft/s is :data:`DOCUMENT_MAX_SPEED`).
+    geometry : MecanumGeometry, optional
+        Enables the wheel rim-speed check.
+    refuse : bool
+        Refuse (return zeros) instead of scaling.
+
+    Returns
+    -------
+    SpeedLimit
+        ``(twist, scale, reason)``.
+
+    Examples
+    --------
+    >>> out = limit_speed((6.0, 0.0, 0.0), 4.572)
+    >>> round(out.scale, 4), out.twist
+    (0.762, (4.572, 0.0, 0.0))
+    >>> print(out.reason)
+    body speed 6.000 m/s exceeds the limit 4.572 m/s: scaled by 0.762 (same path, slower)
+    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> print(limit_speed((0.0, 0.0, 20.0), 4.572, g, refuse=True).reason)
+    fastest wheel (FL) rim speed 7.000 m/s exceeds the limit 4.572 m/s: refused (not driven)
+    """
+    vec = twist.as_array() if isinstance(twist, Twist) else v.shaped("twist", twist, (3,))
+    if vec.shape != (3,):
+        raise ValueError(f"twist must have shape (3,) (one command), got shape {vec.shape}")
+    vmax = v.positive("max_speed", max_speed)
+    if not isinstance(refuse, bool):
+        raise ValueError(f"refuse must be True or False, got {refuse!r}")
+    vx, vy, w = (float(c) for c in vec)
+    checks = [("body speed", math.hypot(vx, vy))]
+    if geometry is not None:
+        g = _geometry(geometry)
+        rim = abs(vx) + abs(vy) * g.lateral_factor + abs(w) * g.k
+        rates = inverse_kinematics(vx, vy, w, g)
+        fastest = WHEEL_NAMES[int(np.argmax(np.abs(rates)))]
+        checks.append((f"fastest wheel ({fastest}) rim speed", rim))
+    what, speed = max(checks, key=lambda c: c[1])
+    if speed <= vmax:
+        names = " and ".join(c[0] for c in checks)
+        return SpeedLimit((vx, vy, w), 1.0,
+                          f"within the limit: {names} {speed:.3f} m/s <= {vmax:.3f} m/s")
+    head = f"{what} {speed:.3f} m/s exceeds the limit {vmax:.3f} m/s"
+    if refuse:
+        return SpeedLimit((0.0, 0.0, 0.0), 0.0, f"{head}: refused (not driven)")
+    s = vmax / speed
+    return SpeedLimit((vx * s, vy * s, w * s), s,
+                      f"{head}: scaled by {s:.3f} (same path, slower)")
+
+
+def circle_speed(radius, lap_time) -> np.ndarray:
+    r"""Speed along a circle driven once in ``lap_time``: :math:`v = 2\pi|R|/T`, m/s.
+
+    Parameters
+    ----------
+    radius : float or array_like
+        :math:`R`, m, non-zero; positive = counter-clockwise (left), negative = clockwise.
+    lap_time : float or array_like
+        :math:`T`, s, > 0.
+
+    Examples
+    --------
+    >>> round(float(circle_speed(1.0, 2 * np.pi)), 12)
+    1.0
+    """
+    r_a, t_a = _circle_args(radius, lap_time)
+    return 2.0 * np.pi * np.abs(r_a) / t_a
+
+
+def _circle_args(radius, lap_time) -> tuple[np.ndarray, np.ndarray]:
+    r_a = v.finite_array("radius", radius)
+    t_a = v.finite_array("lap_time", lap_time)
+    if np.any(r_a == 0):
+        raise ValueError(f"radius must be a non-zero finite number (m), got {radius!r}")
+    if np.any(t_a <= 0):
+        raise ValueError(f"lap_time must be a finite number > 0 (s), got {lap_time!r}")
+    r_a, t_a = _broadcast(radius=r_a, lap_time=t_a)
+    return r_a, t_a
+
+
+def circle_twist(radius, lap_time, t=0.0, *, heading: str = "rotating") -> np.ndarray:
+    r"""Body twist that drives a circle of radius :math:`R` once every :math:`T` seconds.
+
+    The vehicle starts at the origin facing +x, moving along +x, with the centre of the
+    circle at :math:`(0, R)` (to its left for :math:`R > 0`). With
+    :math:`\Omega = \operatorname{sign}(R)\,2\pi/T` and :math:`v = 2\pi|R|/T`:
+
+    - ``heading="rotating"``: the vehicle turns with the path, facing along it; the twist is
+      constant, :math:`(v, 0, \Omega)` (any vehicle can do this).
+    - ``heading="held"``: the vehicle keeps facing +x while its velocity turns; the twist
+      varies with time, :math:`(v\cos\Omega t,\ v\sin\Omega t,\ 0)` (only a holonomic
+      vehicle can do this).
+
+    Parameters
+    ----------
+    radius : float or array_like
+        m, non-zero; positive = counter-clockwise.
+    lap_time : float or array_like
+        s, > 0.
+    t : float or array_like
+        Time since the start, s (matters only for ``heading="held"``).
+    heading : {"rotating", "held"}
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        (vx m/s, vy m/s, omega rad/s), body frame.
+
+    Examples
+    --------
+    >>> circle_twist(2.0, 4 * np.pi)
+    array([1. , 0. , 0.5])
+    >>> np.round(circle_twist(2.0, 4 * np.pi, t=np.pi, heading="held"), 12)
+    array([0., 1., 0.])
+    """
+    v.choice("heading", heading, ("rotating", "held"))
+    r_a, t_a = _circle_args(radius, lap_time)
+    t_arr = v.finite_array("t", t)
+    r_a, t_a, t_arr = _broadcast(radius=r_a, lap_time=t_a, t=t_arr)
+    speed = 2.0 * np.pi * np.abs(r_a) / t_a
+    rate = np.sign(r_a) * 2.0 * np.pi / t_a
+    if heading == "rotating":
+        return np.stack([speed, np.zeros_like(speed), rate], axis=-1)
+    angle = rate * t_arr
+    return np.stack([speed * np.cos(angle), speed * np.sin(angle), np.zeros_like(speed)],
+                    axis=-1)
+
+
+def go_to_point_twist(pose, goal, speed, max_omega, dt=None) -> np.ndarray:
+    r"""Body twist that drives straight to ``goal`` while turning to its heading.
+
+    "Where am I" is ``pose`` :math:`(x, y, \theta)`, "where am I going" is ``goal``
+    :math:`(x_g, y_g, \theta_g)` (world frame, m and rad); "how do I get there": move along the
+    straight segment and turn through the wrapped heading error
+    :math:`\Delta\theta = \operatorname{wrap}(\theta_g - \theta)` so that both end together,
+    after
+
+    .. math:: T = \max\left(\frac{d}{v_{max}}, \frac{|\Delta\theta|}{\omega_{max}}\right),
+              \quad d = \sqrt{(x_g-x)^2 + (y_g-y)^2}.
+
+    The world velocity is :math:`(x_g - x, y_g - y)/T` and :math:`\omega = \Delta\theta/T`;
+    rotated into the body frame by :math:`-\theta`:
+
+    .. math::
+
+        v_x = \frac{\cos\theta\,(x_g-x) + \sin\theta\,(y_g-y)}{T},\quad
+        v_y = \frac{-\sin\theta\,(x_g-x) + \cos\theta\,(y_g-y)}{T},\quad
+        \omega = \frac{\Delta\theta}{T}.
+
+    This is the continuous-time answer: the world velocity is constant, so the body twist
+    turns as the vehicle turns. A controller that holds each command for a step ``dt`` drives
+    short arcs instead and drifts off the segment by O(dt) (about 2 mm over 4 m at 100 Hz while
+    turning 0.25 rad/s). Pass ``dt`` to get the *sampled* answer instead: the constant twist
+    that, held for ``dt``, lands exactly on the segment at the fraction
+    :math:`f = \min(\Delta t/T, 1)` of the way (the SE(2) logarithm of that displacement,
+    divided by :math:`\Delta t`); with :math:`T \le \Delta t` it arrives in this step.
+
+    At the goal both return zeros.
+
+    Parameters
+    ----------
+    pose, goal : Pose or array_like, shape (..., 3)
+        (x m, y m, theta rad), world frame.
+    speed : float
+        :math:`v_{max}`, speed along the segment, m/s, > 0.
+    max_omega : float
+        :math:`\omega_{max}`, largest yaw rate, rad/s, > 0.
+    dt : float, optional
+        Control period, s, > 0: return the sampled twist (see above).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        (vx m/s, vy m/s, omega rad/s), body frame.
+
+    Examples
+    --------
+    Facing +y (theta = pi/2), a goal 2 m ahead in world +x is to the vehicle's right:
+
+    >>> np.round(go_to_point_twist((0, 0, np.pi / 2), (2, 0, np.pi / 2), 1.0, 1.0), 12)
+    array([ 0., -1.,  0.])
+    """
+    p = pose.as_array() if isinstance(pose, Pose) else v.shaped("pose", pose, (3,))
+    q = goal.as_array() if isinstance(goal, Pose) else v.shaped("goal", goal, (3,))
+    vmax = v.positive("speed", speed)
+    wmax = v.positive("max_omega", max_omega)
+    step = None if dt is None else v.positive("dt", dt)
+    try:
+        p, q = np.broadcast_arrays(p, q)
+    except ValueError:
+        raise ValueError(f"pose and goal must have broadcastable shapes, got {np.shape(p)} "
+                         f"and {np.shape(q)}") from None
+    dx = q[..., 0] - p[..., 0]
+    dy = q[..., 1] - p[..., 1]
+    dth = wrap_angle(q[..., 2] - p[..., 2])
+    time_to_go = np.maximum(np.hypot(dx, dy) / vmax, np.abs(dth) / wmax)
+    arrived = time_to_go == 0
+    safe_t = np.where(arrived, 1.0, time_to_go)
+    c, s = np.cos(p[..., 2]), np.sin(p[..., 2])
+    bx, by = c * dx + s * dy, -s * dx + c * dy  # goal offset in the body frame
+    if step is None:
+        out = np.stack([bx / safe_t, by / safe_t, dth / safe_t], axis=-1)
+    else:
+        f = np.minimum(step / safe_t, 1.0)
+        phi = f * dth
+        a = np.sinc(phi / np.pi)                             # sin(phi)/phi
+        b = np.sin(phi / 2) * np.sinc(phi / (2 * np.pi))     # (1 - cos(phi))/phi
+        norm = a * a + b * b
+        ex, ey = f * bx, f * by
+        out = np.stack([(a * ex + b * ey) / norm / step, (-b * ex + a * ey) / norm / step,
+                        phi / step], axis=-1)
+    return np.where(arrived[..., None], 0.0, out)
+
