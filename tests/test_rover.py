@@ -9,6 +9,7 @@ derivation, and properties (mirror symmetry, linearity in speed, inverse after f
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -402,3 +403,38 @@ def test_exercise_references_are_independent_of_the_shortcuts():
     v = ex.normalised_wheel_speeds(40.0, 100.0, 7.254, 25.0, 25.0, 10.073)
     assert np.max(np.abs(v)) == pytest.approx(100.0)
     assert v[0] == pytest.approx(100.0)  # the outer front corner is the fastest here
+
+
+# ---------------------------------------------------------------- the panel and the sweep
+
+def test_panel_never_raises_and_draws_the_model():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from wheelkin.widgets import rover as rw
+
+    panel = rw.steering_panel()
+    try:
+        view = panel.state
+        for command, speed in ((-100, 100), (0, 100), (1, 35), (37, 0), (100, 100)):
+            panel.redraw(command=command, speed=speed)
+            assert not view.message.get_visible()
+            heights = [bar.get_height() for bar in view.bars]
+            np.testing.assert_allclose(heights, wheel_speeds(command_to_radius(command), speed))
+        # A model error is shown in the figure, never raised.
+        view.geometry = RoverGeometry(7.254, 200.0, 200.0, 10.073)  # r_min far above 20 in
+        view.update(100, 50)
+        assert view.message.get_visible() and "radius" in view.message.get_text()
+    finally:
+        panel.close()
+
+
+def test_sweep_animation_renders_every_frame():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from wheelkin.animation import to_html
+    from wheelkin.widgets import rover as rw
+
+    html = to_html(rw.sweep_animation(frames=5), name="test-rover-sweep", alt="sweep")
+    assert len(re.findall(r"frames\[\d+\]", html)) == 5

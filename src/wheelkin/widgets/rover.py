@@ -13,9 +13,10 @@ from __future__ import annotations
 import math
 
 import ipywidgets as widgets
-import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
 
 from wheelkin import rover
@@ -192,8 +193,11 @@ class RoverView:
         self.centre_text.set_text(f"body centre {centre:.0f}")
 
 
-def _figure(figsize=(8.0, 4.0), dpi=72):
-    fig = plt.figure(figsize=figsize, dpi=dpi)
+def _figure(figsize=(8.0, 4.0), dpi=72) -> Figure:
+    # A figure unknown to pyplot: the inline backend never shows it by itself (a live panel
+    # renders it into its own image; an animation into its HTML player).
+    fig = Figure(figsize=figsize, dpi=dpi)
+    FigureCanvasAgg(fig)
     fig.subplots_adjust(left=0.08, right=0.98, bottom=0.14, top=0.92)
     return fig
 
@@ -219,8 +223,8 @@ def steering_panel() -> Panel:
                  title="Open Source Rover: steering command and speed")
 
 
-def sweep_animation(frames: int = 41, speed: float = 100.0, *, mapping: str = "radius",
-                    figsize=(7.0, 3.6), dpi: int = 72, interval: int = 250) -> FuncAnimation:
+def sweep_animation(frames: int = 33, speed: float = 100.0, *, mapping: str = "radius",
+                    figsize=(6.4, 3.3), dpi: int = 72, interval: int = 250) -> FuncAnimation:
     """The steering command swept from -100 to 100 in ``frames`` steps (0 included when
     ``frames`` is odd), as a FuncAnimation for :func:`wheelkin.animation.show`."""
     commands = np.linspace(-100.0, 100.0, frames)
