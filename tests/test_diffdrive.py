@@ -14,6 +14,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from wheelkin import diffdrive as dd
+from wheelkin.exercises import check, get
 
 W_MM, ENC = 85, 8043
 finite = st.floats(-5.0, 5.0, allow_nan=False)
@@ -173,6 +174,9 @@ def _reference_int32(v: int, w: int, method: str, base=W_MM, enc=ENC):
         turn = (mul(abs(w), k) + 32768) >> 16
         turn = -turn if w < 0 else turn
         centre = v
+    elif method == "readme_order":
+        turn = _c_div(_c_div(mul(w, base), 2000) * enc, 1000)  # no overflow possible here
+        centre = _c_div(v, 2)
     else:
         turn = _c_div(mul(mul(w, base), enc), 2_000_000)
         centre = _c_div(v, 2) if method == "firmware" else v
@@ -219,6 +223,13 @@ def test_int32_q16_never_overflows_and_rounds_to_nearest():
     k_error = abs(22402 - Fraction(W_MM * ENC * 65536, 2_000_000)) / 65536  # K is rounded
     assert np.max(np.abs(right - exact_r)) <= 0.5 + float(k_error) * 2**15 + 1e-9
     np.testing.assert_array_equal(left, -right)           # symmetric in omega
+
+
+def test_int32_readme_order_dead_band_and_steps():
+    w = np.arange(-200, 201)
+    _, right, _ = dd.wheel_speeds_steps_int32(0, w, method="readme_order")
+    assert np.all(right[np.abs(w) <= 23] == 0) and np.all(right[np.abs(w) >= 24] != 0)
+    assert set(np.unique(np.abs(right))) <= {8 * k + k * 43 // 1000 for k in range(10)}
 
 
 def test_int32_firmware_halves_v():
@@ -284,10 +295,12 @@ def test_speedometer_every_estimate_uses_min_steps():
     rng = np.random.default_rng(3)
     t = np.cumsum(rng.uniform(0.005, 0.015, 400))
     counts = np.cumsum(rng.integers(0, 3, 400))
-    est = dd.speed_from_counts(counts, t, window=0.0, min_steps=5)
-    changes = np.flatnonzero(np.diff(est) != 0) + 1
+    est, updated = dd.speed_from_counts(counts, t, window=0.0, min_steps=5,
+                                        return_updates=True)
+    assert updated.shape == est.shape and updated.sum() > 20
+    assert np.all(np.diff(est)[~updated[1:]] == 0)  # held between updates
     last = 0
-    for i in changes:
+    for i in np.flatnonzero(updated):
         assert counts[i] - counts[last] >= 5
         assert math.isclose(est[i], (counts[i] - counts[last]) / (t[i] - t[last]))
         last = i
@@ -380,3 +393,40 @@ def test_constants():
 def test_bad_input_names_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+# ------------------------------------------------------------------ exercises
+
+EXERCISES = ["diffdrive.wheel_speeds", "diffdrive.wheel_speeds_steps", "diffdrive.omega_limit",
+             "diffdrive.count_time"]
+
+
+@pytest.mark.parametrize("name", EXERCISES)
+def test_exercise_reference_passes_and_stub_is_friendly(name):
+    ex = get(name)
+    assert check(name, ex.reference).passed
+
+    def stub(*args):
+        raise NotImplementedError
+
+    result = check(name, stub)
+    assert not result.passed and result.kind == "not-written"
+
+
+@pytest.mark.parametrize("name", EXERCISES)
+def test_exercise_mistakes_are_diagnosed(name):
+    ex = get(name)
+    assert len(ex.mistakes) >= 2
+    for wrong, text in ex.mistakes:
+        result = check(name, wrong)
+        assert not result.passed
+        assert text in result.message
+
+
+def test_exercise_swapped_wheels_are_named():
+    def swapped(v, omega, track_width):
+        left, right = dd.wheel_speeds(v, omega, track_width)
+        return right, left
+
+    result = check("diffdrive.wheel_speeds", swapped)
+    assert result.kind == "swapped" and "v_left and v_right" in result.message

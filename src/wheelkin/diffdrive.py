@@ -85,7 +85,7 @@ INT16_MIN = -(2**15)
 INT16_MAX = 2**15 - 1
 
 #: Methods of :func:`wheel_speeds_steps_int32`.
-INT32_METHODS = ("firmware", "corrected", "q16")
+INT32_METHODS = ("readme_order", "firmware", "corrected", "q16")
 
 
 @dataclass(frozen=True)
@@ -579,6 +579,12 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
 
     ``method`` chooses the computation:
 
+    ``"readme_order"``
+        The README's mrad/s formula evaluated literally, left to right, as C would:
+        :math:`v_{L,R} = v/2 \mp (((\omega W) / 2000)\,\mathrm{ENC}) / 1000`. The first
+        division truncates the turn to whole mm/s: no turn at all for
+        :math:`|\omega W| < 2000` (:math:`|\omega| \le 23` mrad/s on the Radon Ulzer), and
+        steps of ENC/1000 steps/s above.
     ``"firmware"``
         What the firmware's source does with the README's formula: the forward term is
         halved, :math:`v/2`, and the turn term is evaluated left to right in int32,
@@ -605,7 +611,7 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
         :math:`W`, mm (positive integer). Default: the Radon Ulzer's 85 mm.
     steps_per_m : int
         ENC, steps/m (positive integer). Default: the Radon Ulzer's 8043.
-    method : {"firmware", "corrected", "q16"}
+    method : {"readme_order", "firmware", "corrected", "q16"}
         The computation (see above).
 
     Returns
@@ -615,6 +621,8 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
 
     Examples
     --------
+    >>> wheel_speeds_steps_int32(0, 20, method="readme_order")     # 20 * 85 / 2000 == 0
+    FixedPointWheelSpeeds(left=0, right=0, overflow=False)
     >>> wheel_speeds_steps_int32(1000, 1000)                       # the firmware: v halved
     FixedPointWheelSpeeds(left=159, right=841, overflow=False)
     >>> wheel_speeds_steps_int32(1000, 1000, method="corrected")   # exact: 658.17, 1341.83
@@ -658,6 +666,9 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
             turn = mag >> 16
             turn = -turn if w_i < 0 else turn
             centre = v_i
+        elif method == "readme_order":
+            turn = _c_div(mul(_c_div(mul(w_i, base), 2 * 1000), enc), 1000)
+            centre = _c_div(v_i, 2)
         else:
             turn = _c_div(mul(mul(w_i, base), enc), 2 * 1000 * 1000)
             centre = _c_div(v_i, 2) if method == "firmware" else v_i
@@ -735,7 +746,8 @@ def time_to_count(min_steps, speed, steps_per_m):
     return _out(m / (_v.positive("steps_per_m", steps_per_m) * np.abs(s)))
 
 
-def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None):
+def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None, *,
+                      return_updates: bool = False):
     r"""Wheel speed (steps/s) from cumulative encoder counts, as a firmware speedometer does.
 
     The estimator keeps an *anchor* sample :math:`a` (where it last made an estimate). At each
@@ -765,11 +777,16 @@ def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None):
         Minimum :math:`|\Delta c|` for an estimate :math:`m` (>= 0).
     timeout : float, optional
         Longest time without an estimate, s (> 0, >= ``window``); None: hold forever.
+    return_updates : bool
+        Also return where a new estimate was made.
 
     Returns
     -------
-    numpy.ndarray, same shape as ``counts``
+    speed : numpy.ndarray, same shape as ``counts``
         Estimated speed at each sample, steps/s (0 until the first estimate).
+    updated : numpy.ndarray of bool, same shape as ``counts``
+        Only with ``return_updates=True``: True at the samples where a new estimate was made
+        (elsewhere the previous one is held).
 
     Examples
     --------
@@ -801,6 +818,7 @@ def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None):
         tmo = math.inf
     cols = c.reshape(c.shape[0], -1)
     out = np.zeros_like(cols)
+    updated = np.zeros(cols.shape, dtype=bool)
     eps = 1e-9 * max(1.0, float(np.max(np.abs(t))))  # float times: 0.03 - 0.01 < 0.02
     for j in range(cols.shape[1]):
         col = cols[:, j]
@@ -813,5 +831,8 @@ def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None):
             if due or dt >= tmo - eps:
                 estimate = dc / dt
                 anchor = i
+                updated[i, j] = True
             out[i, j] = estimate
+    if return_updates:
+        return out.reshape(c.shape), updated.reshape(c.shape)
     return out.reshape(c.shape)

@@ -1,0 +1,253 @@
+"""The differential-drive chapter's live panels and their kernel-free twin (notebooks/05_diffdrive).
+
+:class:`DiffDriveView` draws the Radon Ulzer from above (forward up the page, its right to the
+right of the page, millimetres) with an arrow per wheel for its speed, the turning centre
+(ICR), and bars of the left and right wheel speeds as three computations give them: the
+correct formula, the firmware README's formula as printed, and the firmware's 32-bit integer
+computation. ``update(v_steps_per_s, omega_mrad_per_s)`` moves the artists in place.
+
+- panel ``diffdrive.wheel_speeds``: sliders for v (steps/s) and omega (mrad/s);
+  :func:`sweep_animation` sweeps omega through the int32 overflow for the HTML book.
+- panel ``diffdrive.speedometer``: a wheel at constant speed read by a speedometer with a
+  window and a minimum step count (:func:`wheelkin.diffdrive.speed_from_counts`).
+"""
+
+from __future__ import annotations
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.animation import FuncAnimation
+from matplotlib.figure import Figure
+from matplotlib.patches import FancyArrow, Rectangle
+
+from wheelkin import diffdrive as dd
+from wheelkin.widgets import Panel, register
+
+__all__ = ["DiffDriveView", "SpeedometerView", "speedometer_panel", "sweep_animation",
+           "wheel_speeds_panel"]
+
+W_MM = dd.RADON_ULZER_CONSTANTS.wheel_base_mm
+ENC = dd.RADON_ULZER_CONSTANTS.steps_per_m
+ARROW_MM_PER_STEP_PER_S = 0.04     # arrow length per wheel speed (mm per step/s)
+_LEFT_COLOUR, _RIGHT_COLOUR = "#1f77b4", "#d62728"
+_XLIM = (-140.0, 140.0)            # page x: the robot's right (mm)
+_YLIM = (-110.0, 150.0)            # page y: forward (mm)
+_ROWS = ("correct", "as printed", "int32")
+
+
+class DiffDriveView:
+    """Top view of the Radon Ulzer with wheel-speed arrows and the ICR, and a bar chart of
+    the wheel speeds from three computations.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        An empty figure; two axes are added.
+    wheel_base_mm, steps_per_m : int
+        The firmware's constants (default: the Radon Ulzer's 85 mm and 8043 steps/m).
+    """
+
+    def __init__(self, fig, wheel_base_mm: int = W_MM, steps_per_m: int = ENC) -> None:
+        self.base = wheel_base_mm
+        self.enc = steps_per_m
+        self.fig = fig
+        gs = fig.add_gridspec(1, 2, width_ratios=(1.0, 1.2), wspace=0.3, left=0.11,
+                              right=0.98, bottom=0.15, top=0.84)
+        ax = self.ax = fig.add_subplot(gs[0])
+        bx = self.bx = fig.add_subplot(gs[1])
+        ax.set_xlim(*_XLIM)
+        ax.set_ylim(*_YLIM)
+        ax.set_aspect("equal")
+        ax.set_xlabel("robot's right (mm)")
+        ax.set_ylabel("forward (mm)")
+        ax.grid(True, lw=0.3, alpha=0.5)
+        half = wheel_base_mm / 2
+        ax.add_patch(Rectangle((-half + 6, -45), 2 * half - 12, 90, fc="#dddddd", ec="#555555",
+                               lw=1.0, zorder=2))
+        for x, colour in ((-half, _LEFT_COLOUR), (half, _RIGHT_COLOUR)):
+            ax.add_patch(Rectangle((x - 5, -18), 10, 36, fc=colour, ec="k", lw=0.8, zorder=3))
+        ax.plot([-half, half], [0, 0], color="k", lw=0.8, zorder=4)
+        ax.plot([0], [0], marker="+", color="k", ms=8, zorder=5)
+        ax.text(-half, -26, "L", ha="center", va="top", fontsize=8)
+        ax.text(half, -26, "R", ha="center", va="top", fontsize=8)
+        self.arrows: list[FancyArrow] = []
+        self.icr = ax.plot([], [], marker="o", color="k", ms=5, ls="none", zorder=6)[0]
+        self.icr_text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=7,
+                                va="bottom")
+        self.printed_marks = ax.plot([], [], ls="none", marker="_", ms=14, mew=2,
+                                     color="#ff7f0e", zorder=7)[0]
+        ax.set_title("", fontsize=9)
+        self.message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center",
+                               va="center", color="#b35900", fontsize=9, zorder=10)
+        # Bars: three computations x (left, right).
+        y = np.arange(len(_ROWS))
+        self.left_bars = bx.barh(y + 0.18, np.zeros(3), height=0.34, color=_LEFT_COLOUR,
+                                 label="left wheel")
+        self.right_bars = bx.barh(y - 0.18, np.zeros(3), height=0.34, color=_RIGHT_COLOUR,
+                                  label="right wheel")
+        bx.set_yticks(y, _ROWS, fontsize=8)
+        bx.invert_yaxis()
+        bx.set_xlim(-3000, 3000)
+        bx.axvline(0, color="k", lw=0.6)
+        bx.set_xlabel("wheel speed (steps/s)")
+        bx.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=7,
+                  frameon=False)
+        self.bar_text = [bx.text(-2900, i + 0.42, "", fontsize=7, va="center")
+                         for i in range(3)]
+        self.title = fig.suptitle("", fontsize=9, y=0.99)
+
+    def _arrow(self, x: float, speed: float, colour: str) -> FancyArrow:
+        length = speed * ARROW_MM_PER_STEP_PER_S
+        return self.ax.add_patch(FancyArrow(x, 0.0, 0.0, length, width=3.0, head_width=9.0,
+                                            head_length=min(10.0, abs(length)) or 0.1,
+                                            length_includes_head=True, color=colour,
+                                            zorder=6))
+
+    def update(self, v_steps_per_s: int, omega_mrad_per_s: int) -> None:
+        """Show the wheel speeds for a set point (v in steps/s, omega in mrad/s)."""
+        try:
+            self._update(int(v_steps_per_s), int(omega_mrad_per_s))
+            self.message.set_text("")
+        except ValueError as exc:  # a value the model rejects is shown, never raised
+            self.message.set_text(str(exc))
+
+    def _update(self, v: int, omega: int) -> None:
+        left, right = dd.wheel_speeds_steps(v, omega, self.base, self.enc)
+        p_left, p_right = dd.wheel_speeds_steps_as_printed(v, omega, self.base, self.enc)
+        i_left, i_right, overflow = dd.wheel_speeds_steps_int32(v, omega, self.base, self.enc,
+                                                                method="firmware")
+        for arrow in self.arrows:
+            arrow.remove()
+        half = self.base / 2
+        self.arrows = [self._arrow(-half, left, _LEFT_COLOUR),
+                       self._arrow(half, right, _RIGHT_COLOUR)]
+        self.printed_marks.set_data([-half, half], [p_left * ARROW_MM_PER_STEP_PER_S,
+                                                    p_right * ARROW_MM_PER_STEP_PER_S])
+        # ICR on the axle line, R = v / omega (mm), positive to the left (page -x).
+        if omega != 0:
+            radius_mm = v * 1e6 / (self.enc * omega)
+            page_x = -radius_mm
+            if _XLIM[0] < page_x < _XLIM[1]:
+                self.icr.set_data([page_x], [0.0])
+            else:
+                self.icr.set_data([], [])
+            side = "left" if radius_mm > 0 else "right"
+            self.icr_text.set_text(f"ICR {abs(radius_mm):.0f} mm to the {side}")
+        else:
+            self.icr.set_data([], [])
+            self.icr_text.set_text("no ICR: straight line")
+        rows = ((left, right), (p_left, p_right), (i_left, i_right))
+        for k, (lv, rv) in enumerate(rows):
+            self.left_bars[k].set_width(lv)
+            self.right_bars[k].set_width(rv)
+            centre = (lv + rv) / 2
+            note = "  OVERFLOW: wrapped" if (k == 2 and overflow) else ""
+            self.bar_text[k].set_text(f"centre {centre:.0f} steps/s{note}")
+            self.bar_text[k].set_color("#b35900" if note else "k")
+        self.title.set_text(f"v = {v} steps/s ({v / self.enc:.3f} m/s), "
+                            f"ω = {omega} mrad/s")
+
+
+def wheel_speeds_panel() -> Panel:
+    """Sliders for v and omega in the firmware's units, driving :class:`DiffDriveView`."""
+
+    def setup():
+        fig = Figure(figsize=(7.5, 3.4), dpi=72)  # not pyplot's: never shown by accident
+        return fig, DiffDriveView(fig)
+
+    def update(view: DiffDriveView, v_steps_per_s: int, omega_mrad_per_s: int) -> None:
+        view.update(v_steps_per_s, omega_mrad_per_s)
+
+    controls = {
+        "v_steps_per_s": widgets.IntSlider(value=1000, min=-2000, max=2000, step=50,
+                                           description="v (steps/s)",
+                                           continuous_update=True),
+        "omega_mrad_per_s": widgets.IntSlider(value=1000, min=-6000, max=6000, step=50,
+                                              description="ω (mrad/s)",
+                                              continuous_update=True),
+    }
+    return Panel(controls, setup, update,
+                 title="Wheel speeds of the Radon Ulzer: correct, as printed, int32")
+
+
+register("diffdrive.wheel_speeds")(wheel_speeds_panel)
+
+
+def sweep_animation(v_steps_per_s: int = 1000, omega_max: int = 4500, frames: int = 46):
+    """Sweep omega from 0 to ``omega_max`` mrad/s at a fixed v (a FuncAnimation)."""
+    fig = Figure(figsize=(7.0, 3.2), dpi=72)
+    view = DiffDriveView(fig)
+    omegas = np.round(np.linspace(0, omega_max, frames)).astype(int)
+
+    def frame(i: int):
+        view.update(v_steps_per_s, int(omegas[i]))
+        return ()
+
+    return FuncAnimation(fig, frame, frames=frames, interval=150, blit=False)
+
+
+class SpeedometerView:
+    """A wheel at constant speed, its encoder counts, and two speedometers' readings."""
+
+    def __init__(self, fig, steps_per_m: int = ENC, duration: float = 0.6,
+                 task_period: float = 0.002) -> None:
+        self.enc = steps_per_m
+        self.t = np.arange(0.0, duration, task_period)
+        self.ax = fig.add_subplot(1, 1, 1)
+        ax = self.ax
+        (self.true_line,) = ax.plot([], [], color="k", lw=1.2, label="true speed")
+        (self.fixed_line,) = ax.step([], [], where="post", color="#1f77b4", lw=1.0,
+                                     label="fixed window")
+        (self.min_line,) = ax.step([], [], where="post", color="#d62728", lw=1.0,
+                                   label="min. step count")
+        ax.set_xlim(0, duration * 1000)
+        ax.set_xlabel("time (ms)")
+        ax.set_ylabel("speed (mm/s)")
+        ax.grid(True, lw=0.3, alpha=0.5)
+        ax.legend(loc="upper right", fontsize=7)
+        self.text = ax.text(0.02, 0.97, "", transform=ax.transAxes, fontsize=7, va="top")
+
+    def update(self, speed_mm_per_s: float, window_ms: float, min_steps: int) -> None:
+        try:
+            speed = float(speed_mm_per_s) * 1e-3
+            counts = np.floor(speed * self.enc * self.t + 0.5)
+            fixed = dd.speed_from_counts(counts, self.t, window=window_ms * 1e-3)
+            waiting = dd.speed_from_counts(counts, self.t, window=0.0,
+                                           min_steps=int(min_steps))
+        except ValueError as exc:
+            self.text.set_text(str(exc))
+            return
+        ms = self.t * 1000
+        to_mm = 1000.0 / self.enc
+        self.true_line.set_data(ms, np.full_like(ms, speed * 1000))
+        self.fixed_line.set_data(ms, fixed * to_mm)
+        self.min_line.set_data(ms, waiting * to_mm)
+        top = max(speed * 1000 * 2.2, 20.0)
+        self.ax.set_ylim(-0.05 * top, top)
+        resolution = dd.speed_resolution(window_ms * 1e-3, self.enc) * 1000
+        self.text.set_text(f"fixed {window_ms:.0f} ms window: resolution {resolution:.1f} mm/s"
+                           f"\nwaiting for {int(min_steps)} steps")
+
+
+def speedometer_panel() -> Panel:
+    """Sliders for the wheel speed, the window and the minimum step count."""
+
+    def setup():
+        fig = Figure(figsize=(6.0, 3.4), dpi=72)
+        return fig, SpeedometerView(fig)
+
+    def update(view: SpeedometerView, speed_mm_per_s: float, window_ms: float,
+               min_steps: int) -> None:
+        view.update(speed_mm_per_s, window_ms, min_steps)
+
+    controls = {
+        "speed_mm_per_s": widgets.FloatSlider(value=50.0, min=5.0, max=500.0, step=5.0,
+                                              description="speed (mm/s)"),
+        "window_ms": widgets.FloatSlider(value=10.0, min=2.0, max=100.0, step=2.0,
+                                         description="window (ms)"),
+        "min_steps": widgets.IntSlider(value=6, min=1, max=30, description="min steps"),
+    }
+    return Panel(controls, setup, update, title="Speedometer: window vs minimum step count")
+
+
+register("diffdrive.speedometer")(speedometer_panel)
