@@ -1,0 +1,567 @@
+r"""Wheel-ground contact: friction-limited impulses that make the body roll on its wheels.
+
+The model, in plain words
+-------------------------
+Each step, every driven wheel asks the ground for a velocity at its contact point: along its
+rolling direction ``e``, the wheel's surface speed r_w * phi; across it (``n``), zero. A mecanum
+wheel asks only along the axis ``u`` of its ground roller, for r_w * phi * (u . e); the roller
+spins freely in the other direction. The ground answers with an *impulse* at the contact point
+(a force times the step dt) that changes the body's velocity towards what the wheels ask, and
+friction caps it: a conventional wheel's impulse lies in a disc of radius mu * N_i * dt (the
+Coulomb friction circle, N_i the wheel's normal load), a mecanum wheel's in the interval of that
+half-width. Where every wheel gets what it asks within its cap, the vehicle moves exactly as its
+kinematic model says; where one cannot, it *slips*, and it is flagged.
+
+The maths
+---------
+Work in the body frame with the twist xi = (vx, vy, w) and the mass matrix M = diag(m, m, I)
+(the reference point is the mass centre). Row i of the constraint Jacobian J is the direction
+d_i of one constraint at its wheel's contact point p_i, acting on the twist:
+J_i = (d_x, d_y, p_x d_y - p_y d_x). The requested contact velocities are b = B phi (phi the
+wheel rates; B holds r_w on rolling rows, 0 on lateral rows, r_w (u . e) on roller rows). With
+a given steering, J is constant: the effective mass A = J M^-1 J^T and its pseudo-inverse
+A^+ are computed once per steering configuration (a rover re-computes them when it steers).
+
+Let xi_p be the twist the body would have after the step with no wheel forces (its world
+velocity kept, its frame turned by w dt: this is how the centripetal impulse of a turn is
+charged to the tyres). The impulses lambda (one per row) give xi' = xi_p + M^-1 J^T lambda.
+
+1. *Stick*: lambda = A^+ (b - J xi_p). If the commands are consistent (b lies in the range of
+   J) this gives J xi' = b exactly: xi' is the kinematic twist, whatever xi_p was. If also every
+   wheel's impulse is within its cap, that is the answer. All of it is one precomputed affine
+   map of (phi, xi_p): one small matrix-vector product per step.
+2. *Slip*: otherwise xi' minimises the convex function
+
+   F(xi) = 1/2 (xi - xi_p)^T M (xi - xi_p) + sum_w mu N_w dt * |J_w xi - b_w|
+
+   (kinetic energy of the correction plus the work friction does on the slip: the principle of
+   maximum dissipation), whose optimality conditions are exactly the Coulomb law: a sticking
+   wheel has zero slip and an impulse inside its disc; a slipping wheel's impulse has the full
+   magnitude mu N_w dt and opposes its slip velocity. It is solved by an active-set method: a
+   guess of which wheels slip (last step's, else the stick solution's over-cap wheels, else from
+   projected Gauss-Seidel sweeps), Newton's method on the twist within the subspace where the
+   sticking wheels do not slip, and corrections of the guess until the Coulomb conditions hold
+   (to 1e-9 m/s and 1e-9 of the cap). A slipping wheel is one whose friction is at its cap.
+
+The friction cap is a circle, not a box: the same tyre cannot give its full friction forward
+and sideways at once. This matters for a skid steer: turning, its wheels slide sideways, the
+sideways friction uses up their grip, the forward forces that would turn the body fall short,
+and it turns *slower* than the ideal differential-drive model with its geometric track (a box
+would let it turn at the ideal rate). A skid steer cannot satisfy its lateral constraints while
+turning at all: it always slips in a turn. That is physics, and the waypoint chapter relies on
+it.
+
+Normal loads are static, N_i = load_fraction_i * m * g; a caster carries its share and exerts
+no force. Rolling resistance, motor torque limits and load transfer are not modelled: a wheel
+turns at its commanded rate (after the optional first-order motor lag) whatever the load.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .vehicles import GRAVITY, VehicleSpec
+
+__all__ = ["ContactModel", "ContactResult", "constraint_rows", "dissipation_objective"]
+
+#: A constraint whose contact velocity misses its request by more than this slips (m/s).
+SLIP_TOLERANCE = 1e-9
+#: Relative tolerance on the friction cap.
+CAP_TOLERANCE = 1e-9
+
+
+def constraint_rows(spec: VehicleSpec, steering=()) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Constraint Jacobian J, rate map B and the driven wheel of each row.
+
+    Rows are grouped by driven wheel in ``spec.wheel_names`` order: (rolling, lateral) for a
+    conventional wheel, (roller axis) for a mecanum wheel. Row i acts on the body twist
+    (vx, vy, w) as J_i = (d_x, d_y, p_x d_y - p_y d_x), d the row's direction and p the wheel's
+    contact point; the requested contact velocity is b = B @ phi.
+
+    Parameters
+    ----------
+    spec : VehicleSpec
+    steering : sequence of float
+        Steering angles of ``spec.steered_names``, rad.
+
+    Examples
+    --------
+    >>> from wheelkin.sandbox.vehicles import diff_drive
+    >>> J, B, wheel = constraint_rows(diff_drive(0.1, 0.02))
+    >>> J.round(3).tolist()
+    [[1.0, 0.0, -0.05], [0.0, 1.0, 0.0], [1.0, 0.0, 0.05], [0.0, 1.0, 0.0]]
+    >>> B.round(3).tolist(), wheel.tolist()
+    ([[0.02, 0.0], [0.0, 0.0], [0.0, 0.02], [0.0, 0.0]], [0, 0, 1, 1])
+    """
+    steer = list(steering)
+    if len(steer) != len(spec.steered_names):
+        raise ValueError(
+            f"steering must have {len(spec.steered_names)} angles "
+            f"({', '.join(spec.steered_names) or 'none'}), got {len(steer)}"
+        )
+    driven = spec.driven_wheels
+    per_wheel = spec.steering_of(steer)
+    J, B, owner = [], [], []
+    for j, wheel in enumerate(driven):
+        h = wheel.heading + per_wheel[j]
+        e = (math.cos(h), math.sin(h))
+        n = (-e[1], e[0])
+        px, py = wheel.position
+        if wheel.kind == "mecanum":
+            a = h + math.pi / 2 + wheel.roller_angle
+            u = (math.cos(a), math.sin(a))
+            rows = [(u, wheel.radius * (u[0] * e[0] + u[1] * e[1]))]
+        else:
+            rows = [(e, wheel.radius), (n, 0.0)]
+        for d, coeff in rows:
+            J.append((d[0], d[1], px * d[1] - py * d[0]))
+            brow = [0.0] * len(driven)
+            brow[j] = coeff
+            B.append(brow)
+            owner.append(j)
+    return np.array(J), np.array(B), np.array(owner)
+
+
+def dissipation_objective(xi, xi_pred, J, b, mass_diag, caps, rows_per_wheel) -> float:
+    """F(xi) = 1/2 (xi - xi_p)^T M (xi - xi_p) + sum_w c_w |J_w xi - b_w| (see module doc).
+
+    The contact solution minimises it; tests use it to check optimality independently of the
+    solver. ``caps`` are per wheel (mu N_w dt), ``rows_per_wheel`` is 1 or 2.
+    """
+    xi = np.asarray(xi, float)
+    dx = xi - np.asarray(xi_pred, float)
+    s = (J @ xi - b).reshape(-1, rows_per_wheel)
+    return float(0.5 * dx @ (np.asarray(mass_diag) * dx) + caps @ np.sqrt((s * s).sum(1)))
+
+
+@dataclass
+class ContactResult:
+    """Outcome of one contact solve."""
+
+    twist: list  # (vx, vy, w) after the impulses
+    slipping: tuple  # bool per driven wheel
+    slip_speed: tuple  # |slip velocity| per driven wheel, m/s
+    method: str  # "stick", "active-set" or "pgs"
+
+
+@dataclass
+class _Warm:
+    """What the previous step leaves for the next one's slip solve."""
+
+    partition: tuple | None = None
+    xi: np.ndarray | None = None
+    lam: np.ndarray | None = None
+    consistent_key: object = None
+    consistent: bool = False
+    counts: dict = field(default_factory=dict)
+
+
+def _solve_small(H: list, g: list) -> list:
+    """Solve H x = g for a small symmetric positive definite H (lists; Gaussian elimination)."""
+    d = len(g)
+    a = [[*row, g[i]] for i, row in enumerate(H)]
+    for c in range(d):
+        p = max(range(c, d), key=lambda r: abs(a[r][c]))
+        if p != c:
+            a[c], a[p] = a[p], a[c]
+        piv = a[c][c]
+        for r in range(c + 1, d):
+            f = a[r][c] / piv
+            if f:
+                ar, ac = a[r], a[c]
+                for j in range(c, d + 1):
+                    ar[j] -= f * ac[j]
+    x = [0.0] * d
+    for c in range(d - 1, -1, -1):
+        acc = a[c][d]
+        for j in range(c + 1, d):
+            acc -= a[c][j] * x[j]
+        x[c] = acc / a[c][c]
+    return x
+
+
+def _newton(Mn: list, hq: list, G: list, s0: list, caps: list, k: int, y: list,
+            y_alt: list) -> list:
+    """Minimise f(y) = 1/2 y'Mn y + hq'y + sum_w caps_w |s0_w + G_w y| by damped Newton.
+
+    The reduced slip problem of one partition (plain floats: d <= 3 unknowns, a few wheels).
+    Slipping wheels add curvature caps_w / |s_w| across their slip direction (k = 2 rows per
+    wheel); along it (and for one-row wheels) their term is linear. Newton starts at ``y``,
+    or at ``y_alt`` if a slipping wheel has no slip at ``y`` (a kink of f).
+    """
+    d = len(y)
+    rows = len(s0)
+    rng = range(d)
+
+    def slips(y):
+        s = [s0[i] + sum(G[i][j] * y[j] for j in rng) for i in range(rows)]
+        if k == 2:
+            nrm = [math.hypot(s[2 * w], s[2 * w + 1]) for w in range(len(caps))]
+        else:
+            nrm = [abs(v) for v in s]
+        return s, nrm
+
+    def value(y, nrm):
+        quad = sum(y[i] * (0.5 * sum(Mn[i][j] * y[j] for j in rng) + hq[i]) for i in rng)
+        return quad + sum(c * v for c, v in zip(caps, nrm, strict=True))
+
+    s, nrm = slips(y)
+    if nrm and min(nrm) <= 1e-300:
+        y = y_alt
+        s, nrm = slips(y)
+    for _it in range(60):
+        if nrm and min(nrm) <= 1e-300:
+            break
+        g = [sum(Mn[i][j] * y[j] for j in rng) + hq[i] for i in rng]
+        H = [row[:] for row in Mn]
+        for w, c in enumerate(caps):
+            inv = 1.0 / nrm[w]
+            if k == 2:
+                r0, r1 = G[2 * w], G[2 * w + 1]
+                a0, a1 = s[2 * w] * inv, s[2 * w + 1] * inv
+                q = [a0 * r1[j] - a1 * r0[j] for j in rng]  # J_w^T t, t perpendicular to slip
+                cw = c * inv
+                for i in rng:
+                    g[i] += c * (a0 * r0[i] + a1 * r1[i])
+                    hi = H[i]
+                    for j in rng:
+                        hi[j] += cw * q[i] * q[j]
+            else:
+                sg = c if s[w] > 0 else -c
+                for i in rng:
+                    g[i] += sg * G[w][i]
+        step = _solve_small(H, [-v for v in g])
+        if max(abs(v) for v in step) <= 1e-12 * (1.0 + max(abs(v) for v in y)):
+            return [a + b for a, b in zip(y, step, strict=True)]
+        f0 = value(y, nrm)
+        slope = sum(a * b for a, b in zip(g, step, strict=True))
+        # Fraction to the apex: no slip may shrink below a tenth in one step, so a slip that
+        # is small but not zero at the optimum is approached, not jumped over to the kink.
+        t = 1.0
+        for w in range(len(caps)):
+            if k == 2:
+                s_w = (s[2 * w], s[2 * w + 1])
+                rw = (G[2 * w], G[2 * w + 1])
+            else:
+                s_w, rw = (s[w],), (G[w],)
+            a = [sum(r[j] * step[j] for j in rng) for r in rw]
+            aa = sum(v * v for v in a)
+            sa = sum(u * v for u, v in zip(s_w, a, strict=True))
+            ss = nrm[w] * nrm[w]
+            disc = sa * sa - aa * 0.99 * ss
+            if aa > 0 and disc >= 0:
+                root = (-sa - math.sqrt(disc)) / aa
+                if 0 < root < t:
+                    t = root
+        for _ls in range(40):
+            y1 = [a + t * b for a, b in zip(y, step, strict=True)]
+            s1, nrm1 = slips(y1)
+            if value(y1, nrm1) <= f0 + 1e-4 * t * slope + 1e-15 * abs(f0):
+                break
+            t *= 0.5
+        else:
+            break
+        y, s, nrm = y1, s1, nrm1
+    return y
+
+
+class _Partition:
+    """Matrices of one stick/slip partition, as maps of the requested velocities b."""
+
+    def __init__(self, model: ContactModel, sliding: tuple) -> None:
+        k, n, m = model.k, model.n, model.m
+        self.sliding = sliding
+        self.stuck = np.array([w for w in range(n) if not sliding[w]], dtype=int)
+        self.slide = np.array([w for w in range(n) if sliding[w]], dtype=int)
+        self.krows = np.array([w * k + i for w in self.stuck for i in range(k)], dtype=int)
+        self.srows = np.array([w * k + i for w in self.slide for i in range(k)], dtype=int)
+        self.kr, self.ns = len(self.krows), len(self.slide)
+        J = model.J
+        JK, JS = J[self.krows], J[self.srows]
+        eye = np.eye(m)
+        PK, PS = eye[self.krows], eye[self.srows]
+        if self.kr:
+            JKp = np.linalg.pinv(JK, rcond=1e-10)
+            _, sv, vt = np.linalg.svd(JK)
+            rank = int((sv > 1e-10 * sv.max()).sum())
+            N = vt[rank:].T
+        else:
+            JKp = np.zeros((3, 0))
+            N = np.eye(3)
+        self.JK, self.JS, self.JKp, self.N, self.Nt = JK, JS, JKp, N, N.T
+        self.d = N.shape[1]
+        Md = model.mass_diag
+        self.NtM = N.T * Md
+        self.Mn = (self.NtM @ N).tolist()
+        self.x0_map = JKp @ PK  # xi0 = J_K^+ b_K
+        self.res_map = JK @ self.x0_map - PK  # J_K xi0 - b_K (zero when consistent)
+        self.s0_map = JS @ self.x0_map - PS  # slip of the sliding rows at xi0
+        self.G = (JS @ N).tolist()
+        self.caps = model.caps[self.slide]
+        self.caps_list = self.caps.tolist()
+
+    def toggled(self, wheel: int) -> tuple:
+        new = list(self.sliding)
+        new[wheel] = not new[wheel]
+        return tuple(new)
+
+
+class ContactModel:
+    """The precomputed contact maps of one vehicle in one steering configuration.
+
+    Parameters
+    ----------
+    spec : VehicleSpec
+    steering : tuple of float
+        Steering angles (``spec.steered_names`` order), rad.
+    dt : float
+        Step, s (the caps are impulses, mu N dt).
+    """
+
+    def __init__(self, spec: VehicleSpec, steering: tuple, dt: float) -> None:
+        self.spec = spec
+        self.dt = dt
+        J, B, owner = constraint_rows(spec, steering)
+        self.J, self.B, self.owner = J, B, owner
+        self.n = len(spec.wheel_names)
+        self.m = len(J)
+        self.k = self.m // self.n  # rows per wheel: 1 (mecanum) or 2
+        self.mass_diag = np.array([spec.mass, spec.mass, spec.inertia])
+        minv = 1.0 / self.mass_diag
+        self.minv = minv
+        loads = np.array([w.load_fraction for w in spec.driven_wheels]) * spec.mass * GRAVITY
+        self.caps = spec.mu * loads * dt  # impulse cap per wheel, N s
+        self.row_caps = self.caps[owner]
+        WJt = (J * minv).T  # M^-1 J^T, (3, m)
+        self.WJt = WJt
+        n, m = self.n, self.m
+        M = self.mass_diag
+        # With J of full column rank (every vehicle here), A^+ = J^+T M J^+ with
+        # J^+ = (J^T J)^-1 J^T, so the stick twist is J^+ b and the impulses are the
+        # minimum-norm ones that make the momentum change: lambda = J^+T M (xi' - xi_p).
+        JtJ = J.T @ J
+        if np.linalg.det(JtJ) > 1e-12 * np.trace(JtJ) ** 3:
+            Jp = np.linalg.solve(JtJ, J.T)
+        else:  # pragma: no cover - a vehicle whose wheels cannot fix its twist
+            Jp = np.linalg.pinv(J, rcond=1e-10)
+        self.Jp = Jp
+        # Stick map: y = D @ (phi, xi_p) -> (lambda / cap per row, xi', consistency residual).
+        D = np.zeros((2 * m + 3, n + 3))
+        JpB = Jp @ B
+        D[m:m + 3, :n] = JpB
+        D[m:m + 3, n:] = np.eye(3) - Jp @ J
+        D[:m] = (Jp.T * M) @ (D[m:m + 3] - np.hstack([np.zeros((3, n)), np.eye(3)]))
+        D[m + 3:, :n] = J @ JpB - B
+        D[:m] /= self.row_caps[:, None]
+        self.D = D
+        self.stick_flags = (False,) * n
+        self.stick_speeds = (0.0,) * n
+        self._block_data = None
+        self._partitions: dict = {}
+
+    # ---------------------------------------------------------------- fast path
+    def solve(self, rates, xi_pred, warm: _Warm) -> ContactResult:
+        """Impulses for one step: the twist after them and the slip flags.
+
+        ``rates`` are the wheel rates over the step (rad/s), ``xi_pred`` the free-flight twist.
+        """
+        z = np.array((*rates, *xi_pred))
+        y = self.D @ z
+        m = self.m
+        lam = y[:m]
+        if self.k == 2:
+            l2 = lam * lam
+            worst = (l2[0::2] + l2[1::2]).max()
+        else:
+            worst = (lam * lam).max()
+        key = (id(self), tuple(rates))
+        if warm.consistent_key != key:
+            warm.consistent_key = key
+            warm.consistent = bool(np.abs(y[m + 3:]).max() <= SLIP_TOLERANCE)
+        if worst <= (1.0 + CAP_TOLERANCE) ** 2 and warm.consistent:
+            warm.partition = None
+            return ContactResult(y[m:m + 3].tolist(), self.stick_flags, self.stick_speeds,
+                                 "stick")
+        return self._solve_slip(np.asarray(rates, float), np.asarray(xi_pred, float), y, warm)
+
+    # ---------------------------------------------------------------- slip path
+    def _solve_slip(self, rates, xp, y_stick, warm: _Warm) -> ContactResult:
+        b = self.B @ rates
+        n, m = self.n, self.m
+
+        def follow(guess, start):
+            """Active set: solve a partition, correct it, until Coulomb's law holds."""
+            memo: dict = {}
+            seen = set()
+            for _ in range(2 * n + 4):
+                if guess in seen:
+                    return None
+                seen.add(guess)
+                res = memo.get(guess)
+                if res is None:
+                    res = self._partition_solve(guess, b, xp, start)
+                    memo[guess] = res
+                if res[0] == "ok":
+                    return guess, res
+                guess = res[1]
+            return None
+
+        lam_rows = (y_stick[:m] * self.row_caps).reshape(n, self.k)
+        norms = np.sqrt((lam_rows ** 2).sum(1))
+        guesses = []
+        if warm.partition is not None:
+            guesses.append((warm.partition, warm.xi))
+        over = tuple(bool(x) for x in norms > self.caps * (1 + CAP_TOLERANCE))
+        guesses.append((over, xp))  # (the stick twist would sit on every wheel's kink)
+        for guess, start in guesses:
+            found = follow(guess, start)
+            if found is not None:
+                return self._accept(found, warm, "active-set")
+        # Projected Gauss-Seidel from the last impulses, then the active set from its answer.
+        if warm.partition is not None and warm.lam is not None:
+            lam = warm.lam
+        else:  # the stick impulses, clamped into their discs
+            scale = np.minimum(1.0, self.caps / np.maximum(norms, 1e-300))
+            lam = (lam_rows * scale[:, None]).reshape(-1)
+        for sweeps in (60, 400, 2000):
+            xi, lam = self._pgs(b, xp, lam, sweeps)
+            at_cap = np.sqrt((lam.reshape(n, self.k) ** 2).sum(1)) >= self.caps * (1 - 1e-7)
+            found = follow(tuple(bool(x) for x in at_cap), xi)
+            if found is not None:
+                return self._accept(found, warm, "active-set")
+        # Fallback: the projected Gauss-Seidel answer.
+        s = (self.J @ xi - b).reshape(n, self.k)
+        speeds = np.sqrt((s * s).sum(1)) * at_cap
+        slipping = tuple(bool(x) for x in at_cap)
+        warm.partition, warm.xi, warm.lam = slipping, xi, lam
+        return ContactResult(xi.tolist(), slipping, tuple(speeds.tolist()), "pgs")
+
+    def _accept(self, found, warm: _Warm, method: str) -> ContactResult:
+        guess, (_, xi, lam, speeds) = found
+        warm.partition, warm.xi, warm.lam = guess, xi, lam
+        return ContactResult(xi.tolist(), guess, tuple(speeds.tolist()), method)
+
+    def _partition(self, sliding: tuple) -> _Partition:
+        """Cached matrices of one stick/slip partition."""
+        data = self._partitions.get(sliding)
+        if data is None:
+            if len(self._partitions) > 256:
+                self._partitions.clear()
+            data = _Partition(self, sliding)
+            self._partitions[sliding] = data
+        return data
+
+    def _partition_solve(self, sliding: tuple, b, xp, start):
+        """Minimise F with the wheels ``sliding`` slipping and the others stuck.
+
+        Returns ("ok", xi, lambda, slip speeds) if Coulomb's law holds, else ("retry", a
+        corrected partition): a stuck wheel that cannot roll or whose impulse is over its cap
+        is freed, a slipping wheel whose slip vanishes is stuck.
+        """
+        P = self._partition(sliding)
+        k, M = self.k, self.mass_diag
+        if P.kr:
+            res = P.res_map @ b
+            if np.abs(res).max() > SLIP_TOLERANCE:
+                per = np.sqrt((res.reshape(-1, k) ** 2).sum(1))
+                return ("retry", P.toggled(int(P.stuck[int(per.argmax())])))
+            xi0 = P.x0_map @ b
+        else:
+            xi0 = np.zeros(3)
+        if P.d:
+            s0 = (P.s0_map @ b).tolist() if P.ns else []
+            hq = (P.NtM @ (xi0 - xp)).tolist()
+            y0 = (P.Nt @ (np.asarray(start, float) - xi0)).tolist()
+            y_alt = (P.Nt @ (xp - xi0)).tolist()
+            y = _newton(P.Mn, hq, P.G, s0, P.caps_list, k, y0, y_alt)
+            xi = xi0 + P.N @ np.array(y)
+        else:
+            xi = xi0
+        lam = np.zeros(self.m)
+        rhs = M * (xi - xp)
+        speeds = np.zeros(self.n)
+        if P.ns:
+            s = (P.JS @ xi - b[P.srows]).reshape(P.ns, k)
+            nrm = np.sqrt((s * s).sum(1))
+            vanishing = P.toggled(int(P.slide[int(nrm.argmin())]))
+            if nrm.min() <= 1e-300:
+                return ("retry", vanishing)
+            friction = -(s * (P.caps / nrm)[:, None]).reshape(-1)  # opposes the slip
+            lam[P.srows] = friction
+            rhs = rhs - P.JS.T @ friction
+            speeds[P.slide] = nrm
+        if P.kr:
+            lamK = P.JKp.T @ rhs
+            per = np.sqrt((lamK.reshape(-1, k) ** 2).sum(1)) / self.caps[P.stuck]
+            if per.max() > 1 + CAP_TOLERANCE:
+                return ("retry", P.toggled(int(P.stuck[int(per.argmax())])))
+            lam[P.krows] = lamK
+            miss = P.JK.T @ lamK - rhs
+        else:
+            miss = rhs
+        # The impulses must account for the whole momentum change (Newton converged). If not,
+        # Newton stalled at a kink: the wheel whose slip vanishes should stick.
+        if np.abs(miss).max() > 1e-9 * (1.0 + np.abs(M * (xi - xp)).max()):
+            if P.ns and nrm.min() <= SLIP_TOLERANCE:
+                return ("retry", vanishing)
+            return ("retry", sliding)
+        return ("ok", xi, lam, speeds)
+
+    @property
+    def _blocks(self) -> list:
+        """Per-wheel data for projected Gauss-Seidel, in plain floats (built on first use)."""
+        if self._block_data is None:
+            J, WJt, blocks = self.J, self.WJt, []
+            for w in range(self.n):
+                rows = list(range(w * self.k, (w + 1) * self.k))
+                Aw = J[rows] @ WJt[:, rows]
+                blocks.append((rows, [tuple(J[i]) for i in rows],
+                               [tuple(WJt[:, i]) for i in rows],
+                               np.linalg.inv(Aw).tolist(), float(self.caps[w])))
+            self._block_data = blocks
+        return self._block_data
+
+    def _pgs(self, b, xp, lam0, sweeps: int):
+        """Projected Gauss-Seidel over the wheels' impulse blocks (plain floats)."""
+        lam = [float(x) for x in lam0]
+        xi = list((xp + self.WJt @ np.asarray(lam0, float)).tolist())
+        bl = b.tolist()
+        for _sweep in range(sweeps):
+            change = 0.0
+            for rows, Jr, WJr, Ainv, cap in self._blocks:
+                if len(rows) == 2:
+                    i0, i1 = rows
+                    j0, j1 = Jr
+                    s0 = j0[0] * xi[0] + j0[1] * xi[1] + j0[2] * xi[2] - bl[i0]
+                    s1 = j1[0] * xi[0] + j1[1] * xi[1] + j1[2] * xi[2] - bl[i1]
+                    l0 = lam[i0] - (Ainv[0][0] * s0 + Ainv[0][1] * s1)
+                    l1 = lam[i1] - (Ainv[1][0] * s0 + Ainv[1][1] * s1)
+                    norm = math.hypot(l0, l1)
+                    if norm > cap:
+                        l0 *= cap / norm
+                        l1 *= cap / norm
+                    d0, d1 = l0 - lam[i0], l1 - lam[i1]
+                    lam[i0], lam[i1] = l0, l1
+                    w0, w1 = WJr
+                    xi[0] += w0[0] * d0 + w1[0] * d1
+                    xi[1] += w0[1] * d0 + w1[1] * d1
+                    xi[2] += w0[2] * d0 + w1[2] * d1
+                    change = max(change, abs(d0), abs(d1))
+                else:
+                    (i0,) = rows
+                    (j0,) = Jr
+                    s0 = j0[0] * xi[0] + j0[1] * xi[1] + j0[2] * xi[2] - bl[i0]
+                    l0 = min(cap, max(-cap, lam[i0] - Ainv[0][0] * s0))
+                    d0 = l0 - lam[i0]
+                    lam[i0] = l0
+                    (w0,) = WJr
+                    xi[0] += w0[0] * d0
+                    xi[1] += w0[1] * d0
+                    xi[2] += w0[2] * d0
+                    change = max(change, abs(d0))
+            if change <= 1e-15 * (1.0 + max(self.caps)):
+                break
+        return np.array(xi), np.array(lam)
