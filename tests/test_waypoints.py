@@ -471,3 +471,86 @@ def test_planned_pose_and_wheel_angles_follow_the_ideal_robot():
     # heading from the wheels equals the planned heading (ideal robot)
     heading = segs[0].start[2] + R_W * (ang[:, 1] - ang[:, 0]) / (2 * D)
     np.testing.assert_allclose(heading, wp.planned_pose(cmds, times)[:, 2], atol=1e-9)
+
+
+# --------------------------------------------------------------------------- sandbox controllers
+def _sandbox():
+    return pytest.importorskip("wheelkin.sandbox")
+
+
+def test_schedule_controller_drives_a_rolling_robot_along_the_plan():
+    sb = _sandbox()
+    spec = sb.diff_drive(0.12, 0.04, mass=1.4)
+    segs = wp.plan_segments([[0, 0], [0.3, 0], [0.8, 0.5], [0.8, 0.9]])  # straight, left arc
+    cmds = wp.schedule(segs, 0.04, 0.06, wheel_rate=2.0)
+    world = sb.World(dt=1 / 240)
+    # start already rolling at the first command's speed: no start-up slip
+    robot = world.add(spec, pose=segs[0].start, twist=(cmds[0].speed, 0.0, 0.0))
+    ctrl = wp.ScheduleController(robot, cmds)
+    world.run(wp.schedule_times(cmds)[-1] + 0.5, ctrl)
+    assert ctrl.done
+    np.testing.assert_allclose(ctrl.switch_times, wp.schedule_times(cmds))
+    # the wheels turned exactly as scheduled, whatever the step boundaries
+    planned = wp.planned_wheel_angles(cmds, 1e9)
+    np.testing.assert_allclose(robot.wheel_angles[:2], planned, atol=1e-9)
+    # and, rolling without slip, the robot is where the plan ends
+    np.testing.assert_allclose(robot.pose[:2], segs[-1].end[:2], atol=1e-3)
+    assert robot.pose[2] == pytest.approx(segs[-1].end[2], abs=1e-3)
+    np.testing.assert_allclose(robot.commanded_rates[:2], 0.0)
+
+
+def test_schedule_controller_switching_on_encoders():
+    sb = _sandbox()
+    spec = sb.diff_drive(0.12, 0.04, mass=1.4)
+    segs = wp.plan_segments([[0, 0], [0.5, 0]])
+    cmds = wp.schedule(segs, 0.04, 0.06, wheel_rate=2.0)  # 0.08 m/s
+    world = sb.World(dt=1 / 240)
+    robot = world.add(spec, pose=segs[0].start, twist=(0.08, 0.0, 0.0))
+    ctrl = wp.ScheduleController(robot, cmds, switch="encoders", period=0.05)
+    world.run(8.0, ctrl)
+    assert ctrl.done
+    # it stops at the first check after the wheels rolled 0.5 m: at most one period later
+    travelled = 0.04 * float(np.mean(robot.wheel_angles[:2]))
+    assert 0.5 <= travelled <= 0.5 + 0.08 * (0.05 + 1 / 240) + 1e-9
+    assert ctrl.switch_times[-1] - ctrl.switch_times[0] == pytest.approx(0.5 / 0.08, abs=0.06)
+
+
+def test_follower_controller_reaches_a_corner_on_a_skid_steer():
+    sb = _sandbox()
+    a, b = 0.05, 0.06  # the lab robot: half wheelbase, half track
+    chi = 1 + (a / b) ** 2  # Coulomb friction, pure spin: yaw rate / ideal = b^2 / (a^2 + b^2)
+    segs = wp.plan_segments([[0, 0], [0.6, 0], [0.6, 0.4]], arc_radius=None)
+    world = sb.World(dt=0.008)
+    robot = world.add(sb.LAB_ROBOT.replace(motor_time_constant=0.05), pose=segs[0].start)
+    ctrl = wp.FollowerController(robot, wp.PathFollower(segs), wheel_radius=0.04,
+                                 track_width=0.12 * chi, max_wheel_rate=10.0)
+    traj = world.run(8.0, ctrl)
+    assert ctrl.finish_time is not None and ctrl.follower.done
+    assert np.max(wp.waypoint_errors(traj.pose, [[0.6, 0.0], [0.6, 0.4]])) < 0.02
+    est = np.array(ctrl.log_estimate)
+    assert np.hypot(*(est[-1, :2] - traj.pose[-1, :2])) < 0.02
+    assert np.all(np.abs(traj.commanded_rates) <= 10.0 + 1e-9)
+    np.testing.assert_allclose(ctrl.log_t[1] - ctrl.log_t[0], 0.064, atol=0.008)
+
+
+def test_controllers_reject_bad_input():
+    sb = _sandbox()
+    world = sb.World()
+    robot = world.add(sb.LAB_ROBOT)
+    segs = wp.plan_segments([[0, 0], [1, 0]])
+    cmds = wp.schedule(segs, 0.04, 0.06)
+    with pytest.raises(ValueError, match="robot"):
+        wp.ScheduleController(object(), cmds)
+    with pytest.raises(ValueError, match="switch"):
+        wp.ScheduleController(robot, cmds, switch="distance")
+    with pytest.raises(ValueError, match="commands"):
+        wp.ScheduleController(robot, segs)
+    with pytest.raises(ValueError, match="follower"):
+        wp.FollowerController(robot, segs, wheel_radius=0.04, track_width=0.12)
+    f = wp.PathFollower(segs)
+    with pytest.raises(ValueError, match="track_width"):
+        wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.0)
+    with pytest.raises(ValueError, match="max_wheel_rate"):
+        wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, max_wheel_rate=-1)
+    with pytest.raises(ValueError, match="pose"):
+        wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, pose=(0, 0))

@@ -53,7 +53,9 @@ __all__ = [
     "LAB_WAYPOINTS",
     "LAB_WHEEL_RADIUS",
     "LAB_WHEEL_RATE",
+    "FollowerController",
     "PathFollower",
+    "ScheduleController",
     "Segment",
     "WheelCommand",
     "average_encoder_odometry",
@@ -736,3 +738,221 @@ class PathFollower:
             curvature = 2.0 * left / (ahead * ahead + left * left)
             return speed, speed * curvature
         return 0.0, 0.0
+
+
+# --------------------------------------------------------------------------- sandbox controllers
+class _Sides:
+    """Which of a sandbox robot's driven wheels are on the left (y > 0) and on the right."""
+
+    def __init__(self, robot) -> None:
+        if not all(hasattr(robot, name) for name in ("set_side_rates", "encoder_angles",
+                                                     "spec")):
+            raise ValueError("robot must be a sandbox robot (wheelkin.sandbox.World.add) with "
+                             "set_side_rates and encoder_angles")
+        ys = [w.position[1] for w in robot.spec.driven_wheels]
+        self.left = [i for i, y in enumerate(ys) if y > 0]
+        self.right = [i for i, y in enumerate(ys) if y < 0]
+        if not self.left or not self.right:
+            raise ValueError("robot must have driven wheels on both sides (y > 0 and y < 0)")
+
+    def means(self, angles) -> tuple[float, float]:
+        """Mean angle (rad) of the left wheels and of the right wheels."""
+        a = np.asarray(angles, dtype=float)
+        return float(np.mean(a[self.left])), float(np.mean(a[self.right]))
+
+
+class ScheduleController:
+    """Play an open-loop schedule on a sandbox skid steer, as the lab does.
+
+    A controller for :meth:`wheelkin.sandbox.World.run`: called before each step with the time
+    ``t``, it sets the left (FL, RL) and right (FR, RR) wheel rates of the current command.
+
+    Parameters
+    ----------
+    robot : wheelkin.sandbox.Robot
+        A robot with driven wheels on both sides (the lab's: FL, FR, RL, RR; the left ones are
+        those at y > 0).
+    commands : list of WheelCommand
+        From :func:`schedule` (or :func:`quantise`).
+    switch : {"time", "encoders"}
+        ``"time"``: each command is held for its duration (quantise the schedule first to
+        mimic a controller's time step). Called with the world (as ``World.run`` does), a
+        simulation step in which the command changes gets the mean rates of that step, so
+        that the wheels turn exactly as scheduled whatever the step. ``"encoders"``: each
+        command is held until the encoders say its wheels have turned as planned (the mean
+        of the outer side's wheels, or of all wheels on a straight leg, has turned
+        :math:`|\\dot\\varphi_{outer}|\\,t`), checked every ``period`` seconds.
+    period : float
+        Control period (s), > 0; used by ``switch="encoders"``.
+
+    Attributes
+    ----------
+    switch_times : list of float
+        When each command started (s); one more entry when the schedule ended.
+    """
+
+    def __init__(self, robot, commands, *, switch: str = "time", period: float = 0.064) -> None:
+        self._sides = _Sides(robot)
+        self.robot = robot
+        self.commands = _check_commands(commands)
+        self.switch = v.choice("switch", switch, ("time", "encoders"))
+        self.period = v.positive("period", period)
+        self._times = schedule_times(self.commands)
+        self.index = 0
+        self.switch_times: list[float] = []
+        self._next_tick = 0.0
+        self._start_angles = None
+
+    @property
+    def done(self) -> bool:
+        """True once every command has been played."""
+        return self.index >= len(self.commands)
+
+    def _target_reached(self) -> bool:
+        c = self.commands[self.index]
+        turned = np.abs(self.robot.encoder_angles - self._start_angles)
+        left, right = abs(c.left_rate), abs(c.right_rate)
+        if math.isclose(left, right, rel_tol=1e-9):
+            measured = float(np.mean(turned))  # all wheels: the lab's average
+        else:
+            side = self._sides.right if right > left else self._sides.left
+            measured = float(np.mean(turned[side]))
+        return measured >= max(left, right) * c.duration
+
+    def __call__(self, t: float, world=None) -> None:
+        if self.done:
+            self.robot.set_side_rates(0.0, 0.0)
+            return
+        if self.switch == "time":
+            if not self.switch_times:
+                self.switch_times.append(0.0)
+            while not self.done and t >= self._times[self.index + 1]:
+                self.index += 1
+                self.switch_times.append(float(self._times[self.index]))
+            dt = getattr(world, "dt", None)
+            if dt is not None:
+                # the step [t - dt/2, t + dt/2] may hold a switch: its mean rates keep the
+                # wheel angles exact at every step boundary
+                angles = planned_wheel_angles(self.commands, [t - dt / 2, t + dt / 2])
+                left, right = (angles[1] - angles[0]) / dt
+                self.robot.set_side_rates(float(left), float(right))
+                return
+        else:
+            if not self.switch_times:
+                self.switch_times.append(t)
+                self._start_angles = self.robot.encoder_angles
+            if t >= self._next_tick - 1e-12:
+                self._next_tick += self.period
+                if self._target_reached():
+                    self.index += 1
+                    self.switch_times.append(t)
+                    self._start_angles = self.robot.encoder_angles
+        if self.done:
+            self.robot.set_side_rates(0.0, 0.0)
+        else:
+            c = self.commands[self.index]
+            self.robot.set_side_rates(c.left_rate, c.right_rate)
+
+
+class FollowerController:
+    """Close the loop in the sandbox: dead reckoning from the encoders feeding a
+    :class:`PathFollower`.
+
+    Every ``period`` seconds it reads the encoders, updates the pose estimate with the
+    exact arc (:func:`wheelkin.odometry.pose_update`) from the side means
+    :math:`\\Delta s_{L,R} = r_w\\,\\Delta\\bar\\varphi_{L,R}`, with
+    :math:`\\Delta s = (\\Delta s_L + \\Delta s_R)/2` and
+    :math:`\\Delta\\theta = (\\Delta s_R - \\Delta s_L)/W_{odo}`, asks the follower for a body
+    twist, turns it into side wheel rates with the differential drive's inverse kinematics
+    (:func:`wheelkin.diffdrive.wheel_speeds`, track ``track_width``), scales both down if one
+    would exceed ``max_wheel_rate`` (keeping the curvature), and holds them until the next tick.
+
+    Parameters
+    ----------
+    robot : wheelkin.sandbox.Robot
+        A robot with driven wheels on both sides (the lab's: FL, FR, RL, RR), placed at the
+        plan's start pose.
+    follower : PathFollower
+    wheel_radius : float
+        :math:`r_w` (m), > 0.
+    track_width : float
+        :math:`W` (m), > 0, used to command the wheels; for a skid steer, its effective track.
+    odometry_track_width : float, optional
+        :math:`W_{odo}` (m), > 0, used to dead-reckon the heading; default ``track_width``.
+    period : float
+        Control period (s), > 0.
+    max_wheel_rate : float, optional
+        (rad/s), > 0.
+    pose : (x, y, theta), optional
+        The initial estimate; default the follower's first segment's start.
+
+    Attributes
+    ----------
+    log_t : list of float
+        Times of the control ticks (s).
+    log_estimate : list of tuple
+        The pose estimate at each tick (m, m, rad).
+    finish_time : float or None
+        When the follower reported the last segment done (s).
+    """
+
+    def __init__(self, robot, follower: PathFollower, *, wheel_radius: float,
+                 track_width: float, odometry_track_width: float | None = None,
+                 period: float = 0.064, max_wheel_rate: float | None = None,
+                 pose=None) -> None:
+        from wheelkin.odometry import pose_update
+
+        self._pose_update = pose_update
+        self._sides = _Sides(robot)
+        self.robot = robot
+        if not isinstance(follower, PathFollower):
+            raise ValueError(f"follower must be a PathFollower, got {type(follower).__name__}")
+        self.follower = follower
+        self.wheel_radius = v.positive("wheel_radius", wheel_radius)
+        self.track_width = v.positive("track_width", track_width)
+        self.odometry_track_width = (self.track_width if odometry_track_width is None else
+                                     v.positive("odometry_track_width", odometry_track_width))
+        self.period = v.positive("period", period)
+        self.max_wheel_rate = (None if max_wheel_rate is None else
+                               v.positive("max_wheel_rate", max_wheel_rate))
+        start = follower.segments[0].start if pose is None else pose
+        p = v.shaped("pose", start, (3,))
+        if p.ndim != 1:
+            raise ValueError(f"pose must have shape (3,), got shape {p.shape}")
+        self.estimate = np.array(p, dtype=float)
+        self._last = None
+        self._next_tick = 0.0
+        self.log_t: list[float] = []
+        self.log_estimate: list[tuple[float, float, float]] = []
+        self.finish_time: float | None = None
+
+    def rates(self, speed: float, yaw_rate: float) -> tuple[float, float]:
+        """Left and right wheel rates (rad/s) for a body twist, within ``max_wheel_rate``."""
+        left, right = wheel_speeds(speed, yaw_rate, self.track_width)
+        left, right = left / self.wheel_radius, right / self.wheel_radius
+        if self.max_wheel_rate is not None:
+            biggest = max(abs(left), abs(right))
+            if biggest > self.max_wheel_rate:
+                left, right = (left * self.max_wheel_rate / biggest,
+                               right * self.max_wheel_rate / biggest)
+        return left, right
+
+    def __call__(self, t: float, world=None) -> None:
+        if t < self._next_tick - 1e-12:
+            return
+        self._next_tick += self.period
+        now = self._sides.means(self.robot.encoder_angles)
+        if self._last is not None:
+            ds_left = self.wheel_radius * (now[0] - self._last[0])
+            ds_right = self.wheel_radius * (now[1] - self._last[1])
+            distance = 0.5 * (ds_left + ds_right)
+            dtheta = (ds_right - ds_left) / self.odometry_track_width
+            self.estimate = np.asarray(self._pose_update(self.estimate, distance, dtheta,
+                                                         "exact"), dtype=float)
+        self._last = now
+        self.log_t.append(float(t))
+        self.log_estimate.append(tuple(float(a) for a in self.estimate))
+        speed, yaw_rate = self.follower.command(self.estimate)
+        if self.follower.done and self.finish_time is None:
+            self.finish_time = float(t)
+        self.robot.set_side_rates(*self.rates(speed, yaw_rate))
