@@ -107,7 +107,7 @@ class Wheel:
     load_fraction : float
         Share of the vehicle's weight m*g resting on this wheel, in [0, 1].
     width : float, optional
-        Tyre width for drawing, m (default 0.3 * radius).
+        Tyre width for drawing, m (default 0.6 * radius).
 
     Examples
     --------
@@ -156,7 +156,7 @@ class Wheel:
     @property
     def drawn_width(self) -> float:
         """Tyre width used for drawing, m."""
-        return self.width if self.width is not None else 0.3 * self.radius
+        return self.width if self.width is not None else 0.6 * self.radius
 
 
 def polygon_inertia(mass: float, vertices) -> float:

@@ -6,12 +6,18 @@ One step of ``dt`` (default 1/240 s) does, for every robot:
    (the rate averaged over the step drives the step, its end value is kept);
 2. contact (:mod:`.contact`): friction-limited wheel impulses turn the body's twist into the
    twist its wheels ask for, or as close as friction allows (slip flagged per wheel);
-3. motion: pymunk steps the space ({cite}`chipmunk2d`); each vehicle's body has a custom
-   ``position_func`` that moves it along the exact SE(2) arc of its constant body twist over
-   the step (not pymunk's Euler step p += v dt, which alone would cost millimetres over 10 m),
-   and its world velocity is set to the arc's end tangent so the body twist stays constant;
-   pymunk then resolves collisions of the vehicle outlines with the walls (and each other);
-4. encoders: each wheel's angle advances by its rate times dt.
+3. collisions: pymunk steps the space ({cite}`chipmunk2d`) and resolves contacts of the
+   vehicle outlines with the walls (and each other), which may change the twist;
+4. motion: the body moves along the exact SE(2) arc of its constant body twist over the step,
+   not by pymunk's Euler step p += v dt (which alone costs about a millimetre over 10 m);
+5. encoders: each wheel's angle advances by its rate times dt.
+
+Each vehicle's body has a custom ``position_func``, which pymunk calls at the start of its
+step in place of its Euler step: it applies only pymunk's penetration correction (when
+touching). The arc itself is applied after the collision solve (step 4), so that a wall stops
+a vehicle *before* it moves rather than after it has moved into the wall: with pymunk's own
+order (move, then resolve) the wheels, which push again every step, would keep a vehicle
+several millimetres inside a wall.
 
 Accuracy: with commands the vehicle can follow within friction, step 2 returns the kinematic
 twist exactly and step 3 integrates it exactly, so a constant command reproduces the kinematic
@@ -119,7 +125,6 @@ class Robot:
         else:
             self._lag = None
         self.encoder = Encoder(self._n, spec.steps_per_rev, spec.encoder_noise, spec.seed)
-        self._next = (self._x, self._y, self._theta)
         body = pymunk.Body(spec.mass, spec.inertia)
         body.position = (self._x, self._y)
         body.angle = self._theta
@@ -261,24 +266,12 @@ class Robot:
         res = self._model.solve(rates, (u, v, w), self._warm)
         u, v, w = res.twist
         self._slipping, self._slip_speed = res.slipping, res.slip_speed
-        # The exact SE(2) arc of the constant body twist (u, v, w) over dt.
-        a = w * dt
-        if a == 0.0:
-            fs, fc = dt, 0.0
-        else:
-            half = math.sin(0.5 * a)
-            fs, fc = math.sin(a) / w, 2.0 * half * half / w
-        dxb, dyb = u * fs - v * fc, u * fc + v * fs
+        self._u, self._v, self._w = u, v, w
         th = self._theta
         c, s = math.cos(th), math.sin(th)
-        th1 = th + a
-        self._next = (self._x + c * dxb - s * dyb, self._y + s * dxb + c * dyb, th1)
-        c1, s1 = math.cos(th1), math.sin(th1)
         body = self.body
-        body.velocity = (c1 * u - s1 * v, s1 * u + c1 * v)
+        body.velocity = (c * u - s * v, s * u + c * v)
         body.angular_velocity = w
-        self._u, self._v, self._w = u, v, w
-        self._distance += math.hypot(u, v) * dt
         if self._lag is None:
             self._rates = rates
         else:
@@ -289,28 +282,46 @@ class Robot:
         self._step_rates = rates
 
     def _position_func(self, body: pymunk.Body, dt: float) -> None:
-        x, y, th = self._next
+        """Replaces pymunk's Euler step p += (v + v_bias) dt: no motion here, only pymunk's
+        penetration correction (v_bias) when touching. The motion is the exact arc, applied in
+        :meth:`_post_step` once pymunk has resolved the collisions of this step."""
         if self._touching:
-            # Keep pymunk's penetration-correcting bias velocity: apply it alone, then add the arc.
             vel, av = body.velocity, body.angular_velocity
             p0, a0 = body.position, body.angle
             body.velocity, body.angular_velocity = (0.0, 0.0), 0.0
             pymunk.Body.update_position(body, dt)
             p1, a1 = body.position, body.angle
             body.velocity, body.angular_velocity = vel, av
-            x, y, th = x + (p1[0] - p0[0]), y + (p1[1] - p0[1]), th + (a1 - a0)
-            self._next = (x, y, th)
-        body.position = (x, y)
-        body.angle = th
+            self._x += p1[0] - p0[0]
+            self._y += p1[1] - p0[1]
+            self._theta += a1 - a0
 
     def _post_step(self) -> None:
-        self._x, self._y, self._theta = self._next
+        th = self._theta
+        c, s = math.cos(th), math.sin(th)
         if self._touching or self._hit:
+            # A wall or another vehicle pushed back: take the twist pymunk left us.
             self._hit = False
             vx, vy = self.body.velocity
-            c, s = math.cos(self._theta), math.sin(self._theta)
             self._u, self._v = c * vx + s * vy, -s * vx + c * vy
             self._w = self.body.angular_velocity
+        u, v, w = self._u, self._v, self._w
+        dt = self._dt
+        # The exact SE(2) arc of the constant body twist (u, v, w) over dt.
+        a = w * dt
+        if a == 0.0:
+            fs, fc = dt, 0.0
+        else:
+            half = math.sin(0.5 * a)
+            fs, fc = math.sin(a) / w, 2.0 * half * half / w
+        dxb, dyb = u * fs - v * fc, u * fc + v * fs
+        self._x += c * dxb - s * dyb
+        self._y += s * dxb + c * dyb
+        self._theta = th + a
+        self._distance += math.hypot(u, v) * dt
+        body = self.body
+        body.position = (self._x, self._y)
+        body.angle = self._theta
 
     _hit = False
 

@@ -1,0 +1,479 @@
+"""Top-down drawings and animations of the sandbox's vehicles (matplotlib).
+
+:func:`draw_vehicle` draws one vehicle at a pose (body outline, wheels at their steering
+angles, mecanum rollers, caster, heading arrow, reference point, optionally the ICR with the
+lines from it to each wheel, and wheel names) and returns a :class:`VehicleDrawing` whose
+:meth:`~VehicleDrawing.update` moves the same artists to a new pose: live panels and
+animations redraw in place, never rebuilding the figure. A slipping wheel is drawn red.
+
+:func:`animate` turns one or several :class:`~wheelkin.sandbox.world.Trajectory` s into a
+:class:`~matplotlib.animation.FuncAnimation` (trail, walls, a planned path, extra paths such as
+an odometry estimate, the time); show it in a static page with
+:func:`wheelkin.animation.show`, which gives the player stable element ids and alt text. Keep
+it small: 40-60 frames at 72 dpi and figsize (5, 4) make about 0.2-0.4 MB, because the
+frames are stored with a 64-colour palette (:class:`SandboxAnimation`).
+
+Mecanum rollers are drawn as the rollers *touching the ground* (as if seen through the wheel
+from above): theirs is the axis the contact model uses, and in the X arrangement they form an
+X. The rollers on top of a real wheel, the ones a camera above would see, are their mirror
+image about the wheel's axle (an O).
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+from collections.abc import Mapping, Sequence
+from io import BytesIO
+from pathlib import Path
+from tempfile import TemporaryDirectory
+
+import numpy as np
+from matplotlib.animation import FuncAnimation, HTMLWriter
+from matplotlib.axes import Axes
+from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import FancyArrow, Polygon
+
+from wheelkin import _validate as V
+
+from .vehicles import VehicleSpec
+from .world import Trajectory
+
+__all__ = ["PALETTE", "SandboxAnimation", "VehicleDrawing", "animate", "draw_vehicle"]
+
+#: Colours of successive vehicles in one animation.
+PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b")
+WHEEL_COLOUR = "#333333"
+SLIP_COLOUR = "#d62728"
+ICR_COLOUR = "#7f7f7f"
+
+
+def _to_world(pose, points: np.ndarray) -> np.ndarray:
+    x, y, th = pose
+    c, s = math.cos(th), math.sin(th)
+    return np.column_stack((x + c * points[:, 0] - s * points[:, 1],
+                            y + s * points[:, 0] + c * points[:, 1]))
+
+
+def _wheel_outline(wheel, angle: float) -> np.ndarray:
+    """Body-frame corners of a wheel's top view (length 2 r_w, its tyre width)."""
+    half_l, half_w = wheel.radius, wheel.drawn_width / 2
+    c, s = math.cos(angle), math.sin(angle)
+    px, py = wheel.position
+    local = np.array([(-half_l, -half_w), (half_l, -half_w), (half_l, half_w), (-half_l, half_w)])
+    return np.column_stack((px + c * local[:, 0] - s * local[:, 1],
+                            py + s * local[:, 0] + c * local[:, 1]))
+
+
+def _rollers(wheel, angle: float, count: int = 4) -> np.ndarray:
+    """Body-frame segments of a mecanum wheel's ground rollers, shape (count, 2, 2)."""
+    # Ground roller axis: the axle direction turned by gamma.
+    axle = angle + math.pi / 2
+    a = axle + wheel.roller_angle
+    ux, uy = math.cos(a), math.sin(a)
+    ex, ey = math.cos(angle), math.sin(angle)
+    half_w = wheel.drawn_width / 2
+    # A roller spans the tyre width: length half_w / |u . n| along u, clipped to the wheel.
+    un = abs(math.cos(wheel.roller_angle))
+    half = min(half_w / max(un, 1e-9), wheel.radius)
+    px, py = wheel.position
+    segs = []
+    for i in range(count):
+        off = wheel.radius * (-0.75 + 1.5 * i / (count - 1))
+        cx, cy = px + off * ex, py + off * ey
+        segs.append(((cx - half * ux, cy - half * uy), (cx + half * ux, cy + half * uy)))
+    return np.array(segs)
+
+
+class VehicleDrawing:
+    """The artists of one drawn vehicle; :meth:`update` moves them in place."""
+
+    def __init__(self, ax: Axes, spec: VehicleSpec, *, color: str, show_icr: bool,
+                 labels: bool, alpha: float, zorder: float) -> None:
+        self.ax, self.spec, self.show_icr = ax, spec, show_icr
+        self._size = max(math.hypot(*p) for p in spec.body)
+        self.body = Polygon(np.zeros((len(spec.body), 2)), closed=True, facecolor=color,
+                            edgecolor="black", alpha=0.35 * alpha + 0.0, linewidth=1.0,
+                            zorder=zorder)
+        ax.add_patch(self.body)
+        self.outline = Polygon(np.zeros((len(spec.body), 2)), closed=True, fill=False,
+                               edgecolor="black", linewidth=1.0, alpha=alpha,
+                               zorder=zorder + 0.1)
+        ax.add_patch(self.outline)
+        self.wheels = []
+        for _wheel in spec.wheels:
+            patch = Polygon(np.zeros((4, 2)), closed=True, facecolor=WHEEL_COLOUR,
+                            edgecolor="black", linewidth=0.5, alpha=alpha, zorder=zorder + 0.2)
+            ax.add_patch(patch)
+            self.wheels.append(patch)
+        self.rollers = None
+        if any(w.kind == "mecanum" for w in spec.wheels):
+            self.rollers = LineCollection([], colors="#bbbbbb", linewidths=1.0, alpha=alpha,
+                                          zorder=zorder + 0.3)
+            ax.add_collection(self.rollers)
+        self.arrow = FancyArrow(0, 0, 1e-3, 0, width=0.04 * self._size,
+                                head_width=0.18 * self._size, head_length=0.2 * self._size,
+                                length_includes_head=True, color="black", alpha=alpha,
+                                zorder=zorder + 0.4)
+        ax.add_patch(self.arrow)
+        (self.point,) = ax.plot([], [], "o", color="black", markersize=3, alpha=alpha,
+                                zorder=zorder + 0.5)
+        (self.icr,) = ax.plot([], [], marker="x", color=ICR_COLOUR, markersize=8,
+                              linestyle="none", zorder=zorder + 0.5)
+        self.icr_lines = LineCollection([], colors=ICR_COLOUR, linewidths=0.8,
+                                        linestyles="dashed", zorder=zorder - 0.1)
+        ax.add_collection(self.icr_lines)
+        self.labels = []
+        if labels:
+            for wheel in spec.wheels:
+                self.labels.append(ax.text(0, 0, wheel.name, fontsize=8, ha="center",
+                                           va="center", zorder=zorder + 0.6))
+
+    @property
+    def artists(self) -> list:
+        """Every artist of the drawing."""
+        out = [self.body, self.outline, *self.wheels, self.arrow, self.point, self.icr,
+               self.icr_lines, *self.labels]
+        if self.rollers is not None:
+            out.append(self.rollers)
+        return out
+
+    def update(self, pose, steering=None, twist=None, slipping=None) -> None:
+        """Move the drawing to ``pose`` (x, y, theta) with ``steering`` (``steered_names``
+        order), show the ICR of body ``twist`` (if ``show_icr``) and colour the ``slipping``
+        driven wheels (bool per ``wheel_names``) red."""
+        spec = self.spec
+        pose = tuple(float(v) for v in V.shaped("pose", pose, (3,)).reshape(3))
+        k = len(spec.steered_names)
+        steer = np.zeros(k) if steering is None else V.shaped("steering", steering, (k,))
+        per_wheel = dict(zip(spec.wheel_names, spec.steering_of(steer.reshape(k)), strict=True))
+        tw = None if twist is None else V.shaped("twist", twist, (3,)).reshape(3)
+        slip = {}
+        if slipping is not None:
+            flags = np.asarray(slipping, dtype=bool).reshape(-1)
+            if flags.shape != (len(spec.wheel_names),):
+                raise ValueError(f"slipping must have {len(spec.wheel_names)} flags, "
+                                 f"got shape {flags.shape}")
+            slip = dict(zip(spec.wheel_names, flags.tolist(), strict=True))
+        body = _to_world(pose, np.array(spec.body))
+        self.body.set_xy(body)
+        self.outline.set_xy(body)
+        roller_segments = []
+        for wheel, patch in zip(spec.wheels, self.wheels, strict=True):
+            angle = wheel.heading + per_wheel.get(wheel.name, 0.0)
+            if wheel.kind == "caster" and tw is not None:
+                px, py = wheel.position
+                cx, cy = tw[0] - tw[2] * py, tw[1] + tw[2] * px
+                if math.hypot(cx, cy) > 1e-9:
+                    angle = math.atan2(cy, cx)
+            patch.set_xy(_to_world(pose, _wheel_outline(wheel, angle)))
+            patch.set_facecolor(SLIP_COLOUR if slip.get(wheel.name, False) else WHEEL_COLOUR)
+            if wheel.kind == "mecanum":
+                for seg in _rollers(wheel, angle):
+                    roller_segments.append(_to_world(pose, seg))
+        if self.rollers is not None:
+            self.rollers.set_segments(roller_segments)
+        x, y, th = pose
+        length = 0.9 * self._size
+        self.arrow.set_data(x=x, y=y, dx=length * math.cos(th), dy=length * math.sin(th))
+        self.point.set_data([x], [y])
+        for wheel, text in zip(spec.wheels, self.labels, strict=False):
+            px, py = wheel.position
+            dist = max(math.hypot(px, py), 1e-9)
+            scale = 1.0 + (1.4 * wheel.radius + 0.08 * self._size) / dist
+            (lx, ly), = _to_world(pose, np.array([[px * scale, py * scale]]))
+            text.set_position((lx, ly))
+        icr = None
+        if self.show_icr and tw is not None and abs(tw[2]) > 1e-9:
+            local = np.array([[-tw[1] / tw[2], tw[0] / tw[2]]])
+            if np.hypot(*local[0]) < 50 * self._size:
+                icr = _to_world(pose, local)[0]
+        if icr is None:
+            self.icr.set_data([], [])
+            self.icr_lines.set_segments([])
+        else:
+            self.icr.set_data([icr[0]], [icr[1]])
+            pts = _to_world(pose, np.array([w.position for w in spec.wheels if w.driven]))
+            self.icr_lines.set_segments([np.array([icr, p]) for p in pts])
+
+    def remove(self) -> None:
+        """Take the drawing off its axes."""
+        for artist in self.artists:
+            artist.remove()
+
+
+def draw_vehicle(ax: Axes, spec: VehicleSpec, pose, steering=None, *, show_icr: bool = False,
+                 twist=None, slipping=None, labels: bool = False, color: str = PALETTE[0],
+                 alpha: float = 1.0, zorder: float = 3.0) -> VehicleDrawing:
+    """Draw ``spec`` top-down at ``pose`` on ``ax``; returns a handle to move it.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        Should have an equal aspect ratio (``ax.set_aspect("equal")``).
+    spec : VehicleSpec
+    pose : (x, y, theta)
+        m, m, rad.
+    steering : array_like, optional
+        Steering angles, rad, ``spec.steered_names`` order (default 0).
+    show_icr : bool
+        Mark the instantaneous centre of rotation of ``twist`` (when omega != 0 and the ICR is
+        within 50 vehicle sizes) and draw dashed lines from it to each driven wheel.
+    twist : (vx, vy, omega), optional
+        Body twist, for the ICR and the caster's swivel.
+    slipping : array_like of bool, optional
+        Per driven wheel; slipping wheels are drawn red.
+    labels : bool
+        Write each wheel's name beside it.
+    color, alpha, zorder
+        Body colour, opacity, drawing order.
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> from wheelkin.sandbox import RADON_ULZER
+    >>> ax = Figure().add_subplot()
+    >>> drawing = draw_vehicle(ax, RADON_ULZER, (0, 0, 0), show_icr=True, twist=(0.2, 0, 1))
+    >>> drawing.icr.get_data()     # ICR at (0, v / omega) = (0, 0.2)
+    ([np.float64(0.0)], [np.float64(0.2)])
+    >>> drawing.update((1.0, 0.0, 0.5))
+    """
+    if not isinstance(spec, VehicleSpec):
+        raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
+    alpha = V.in_range("alpha", alpha, 0.0, 1.0)
+    drawing = VehicleDrawing(ax, spec, color=color, show_icr=bool(show_icr), labels=labels,
+                             alpha=alpha, zorder=zorder)
+    drawing.update(pose, steering, twist, slipping)
+    return drawing
+
+
+class _PaletteHTMLWriter(HTMLWriter):
+    """HTMLWriter whose embedded PNG frames are reduced to a small colour palette.
+
+    A top-down drawing has few colours besides the anti-aliasing; a 64-colour palette (no
+    dithering) makes each frame 3-4 times smaller and keeps re-rendering deterministic.
+    """
+
+    def __init__(self, *args, colors: int = 64, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.colors = colors
+
+    def setup(self, fig, outfile, dpi=None, frame_dir=None) -> None:
+        super().setup(fig, outfile, dpi, frame_dir)
+        self.frame_format = "png"
+
+    def grab_frame(self, **savefig_kwargs) -> None:
+        if not self.embed_frames or self._hit_limit:  # pragma: no cover - not used here
+            return super().grab_frame(**savefig_kwargs)
+        from PIL import Image
+
+        raw = BytesIO()
+        self.fig.savefig(raw, format="png", dpi=self.dpi, **savefig_kwargs)
+        image = Image.open(raw).convert("RGB").quantize(
+            colors=self.colors, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        out = BytesIO()
+        image.save(out, format="png", optimize=True)
+        data = base64.encodebytes(out.getvalue()).decode("ascii")
+        self._total_bytes += len(data)
+        self._saved_frames.append(data)
+
+
+class SandboxAnimation(FuncAnimation):
+    """A FuncAnimation whose :meth:`to_jshtml` embeds palette-reduced PNG frames."""
+
+    def __init__(self, *args, colors: int | None = 64, **kwargs) -> None:
+        self._colors = colors
+        super().__init__(*args, **kwargs)
+
+    def to_jshtml(self, fps=None, embed_frames=True, default_mode=None) -> str:
+        if self._colors is None or not embed_frames:
+            return super().to_jshtml(fps, embed_frames, default_mode)
+        if fps is None:
+            fps = 1000 / self._interval
+        if default_mode is None:
+            default_mode = "loop" if getattr(self, "_repeat", False) else "once"
+        if not hasattr(self, "_html_representation"):
+            with TemporaryDirectory() as tmpdir:
+                path = Path(tmpdir, "temp.html")
+                writer = _PaletteHTMLWriter(fps=fps, embed_frames=True,
+                                            default_mode=default_mode, colors=self._colors)
+                self.save(str(path), writer=writer)
+                self._html_representation = path.read_text()
+        return self._html_representation
+
+
+def _as_list(value, kind, name):
+    if isinstance(value, kind):
+        return [value]
+    if isinstance(value, Sequence) and value and all(isinstance(v, kind) for v in value):
+        return list(value)
+    raise ValueError(f"{name} must be a {kind.__name__} or a non-empty list of them")
+
+
+def animate(
+    trajectory,
+    spec,
+    *,
+    walls: Sequence = (),
+    plan=None,
+    extra_paths: Mapping | None = None,
+    frames: int = 60,
+    trail: bool = True,
+    title: str | None = None,
+    figsize=(5, 4),
+    dpi: int = 72,
+    show_icr: bool = False,
+    names: Sequence[str] | None = None,
+    interval: float | None = None,
+    limits=None,
+    colors: int | None = 64,
+) -> SandboxAnimation:
+    """Animate recorded trajectories top-down.
+
+    Parameters
+    ----------
+    trajectory : Trajectory or list of Trajectory
+        Several are drawn together (e.g. a slipping vehicle beside its no-slip twin); they are
+        sampled at the same frame times, so record them with the same step and duration.
+    spec : VehicleSpec or list of VehicleSpec
+        One per trajectory.
+    walls : sequence of ((x0, y0), (x1, y1))
+        Wall segments drawn as thick grey lines.
+    plan : (M, 2) array_like, optional
+        A planned path, drawn dashed.
+    extra_paths : {label: (N, 2) or (N, 3) array_like}, optional
+        Further paths (e.g. an odometry estimate) drawn progressively with the animation
+        (a path's points are spread evenly over the animation's duration).
+    frames : int
+        Number of frames (2..400), spread evenly over the trajectory.
+    trail : bool
+        Draw the path travelled so far.
+    title : str, optional
+    figsize, dpi
+        Figure size (in) and resolution.
+    show_icr : bool
+        Mark the ICR of each vehicle.
+    names : list of str, optional
+        Legend labels (default: the specs' names when there are several vehicles).
+    interval : float, optional
+        Milliseconds between frames (default: real time, within 40-250 ms).
+    limits : (xmin, xmax, ymin, ymax), optional
+        Axes limits (default: fitted to everything drawn).
+    colors : int or None
+        Palette size of the embedded frames (2..256; None = full colour, 3-4 times larger).
+
+    Returns
+    -------
+    SandboxAnimation
+        A matplotlib FuncAnimation of a figure not registered with pyplot (it is not shown
+        by itself); display it with ``wheelkin.animation.show(anim, name=..., alt=...)``.
+    """
+    trajs = _as_list(trajectory, Trajectory, "trajectory")
+    specs = _as_list(spec, VehicleSpec, "spec")
+    if len(specs) != len(trajs):
+        raise ValueError(f"spec must give one VehicleSpec per trajectory ({len(trajs)}), "
+                         f"got {len(specs)}")
+    if isinstance(frames, bool) or not isinstance(frames, int | np.integer) \
+            or not 2 <= frames <= 400:
+        raise ValueError(f"frames must be an integer in [2, 400], got {frames!r}")
+    dpi = V.positive("dpi", dpi)
+    size = V.shaped("figsize", figsize, (2,))
+    if np.any(size <= 0):
+        raise ValueError(f"figsize must be positive, got {figsize!r}")
+    wall_list = [V.finite_array("walls", w) for w in walls]
+    if any(w.shape != (2, 2) for w in wall_list):
+        raise ValueError("walls must be segments ((x0, y0), (x1, y1))")
+    plan_arr = None if plan is None else V.shaped("plan", plan, (2,))
+    extras = {}
+    for label, path in (extra_paths or {}).items():
+        arr = V.finite_array(f"extra_paths[{label!r}]", path)
+        if arr.ndim != 2 or arr.shape[1] not in (2, 3) or len(arr) < 1:
+            raise ValueError(f"extra_paths[{label!r}] must have shape (N, 2) or (N, 3), "
+                             f"got {arr.shape}")
+        extras[str(label)] = arr[:, :2]
+    if names is None:
+        names = [s.name for s in specs] if len(specs) > 1 else [None]
+    names = list(names)
+    if len(names) != len(trajs):
+        raise ValueError(f"names must give one label per trajectory ({len(trajs)})")
+
+    t_end = max(float(tr.t[-1]) for tr in trajs)
+    times = np.linspace(0.0, t_end, frames)
+    picks = [np.clip(np.searchsorted(tr.t, times - 1e-12), 0, len(tr) - 1) for tr in trajs]
+    if interval is None:
+        interval = min(250.0, max(40.0, 1000.0 * t_end / max(frames - 1, 1)))
+    interval = V.positive("interval", interval)
+    if colors is not None and (isinstance(colors, bool) or not isinstance(colors, int | np.integer)
+                               or not 2 <= colors <= 256):
+        raise ValueError(f"colors must be an integer in [2, 256] or None, got {colors!r}")
+
+    fig = Figure(figsize=tuple(size), dpi=dpi)
+    ax = fig.add_subplot()
+    ax.set_aspect("equal")
+    ax.grid(True, color="#dddddd", linewidth=0.6)
+    ax.set_axisbelow(True)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    if title:
+        ax.set_title(title, fontsize=10)
+    for w in wall_list:
+        ax.plot(w[:, 0], w[:, 1], color="#555555", linewidth=3, solid_capstyle="round",
+                zorder=1)
+    if plan_arr is not None:
+        ax.plot(plan_arr[:, 0], plan_arr[:, 1], "--", color="#999999", linewidth=1.2,
+                label="plan", zorder=1.5)
+    # Limits: everything that will be drawn, plus the vehicles' size.
+    pts = [tr.pose[:, :2] for tr in trajs] + list(extras.values())
+    pts += [w for w in wall_list]
+    if plan_arr is not None:
+        pts.append(plan_arr)
+    allp = np.concatenate(pts)
+    reach = max(max(math.hypot(*p) for p in s.body) + max(w.radius for w in s.wheels)
+                for s in specs)
+    if limits is None:
+        lo, hi = allp.min(0) - 1.3 * reach, allp.max(0) + 1.3 * reach
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
+    else:
+        lim = V.shaped("limits", limits, (4,)).reshape(4)
+        ax.set_xlim(lim[0], lim[1])
+        ax.set_ylim(lim[2], lim[3])
+
+    drawings, trails = [], []
+    for i, (tr, sp) in enumerate(zip(trajs, specs, strict=True)):
+        colour = PALETTE[i % len(PALETTE)]
+        if trail:
+            (line,) = ax.plot([], [], color=colour, linewidth=1.5, zorder=2, label=names[i])
+            trails.append(line)
+        elif names[i]:
+            ax.plot([], [], color=colour, linewidth=6, label=names[i])
+        drawings.append(draw_vehicle(ax, sp, tr.pose[0], tr.steering[0], show_icr=show_icr,
+                                     twist=tr.twist[0], color=colour, zorder=3 + i))
+    extra_lines = []
+    for j, (label, arr) in enumerate(extras.items()):
+        (line,) = ax.plot([], [], ":", color=PALETTE[(len(trajs) + j) % len(PALETTE)],
+                          linewidth=1.5, label=label, zorder=2.5)
+        extra_lines.append((line, arr))
+    stamp = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
+                    bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8})
+    if any(names) or extras or plan_arr is not None:
+        ax.legend(loc="lower right", fontsize=8, framealpha=0.8)
+    fig.tight_layout()
+
+    def update(f: int):
+        for tr, idx, drawing in zip(trajs, picks, drawings, strict=True):
+            i = int(idx[f])
+            drawing.update(tr.pose[i], tr.steering[i], tr.twist[i], tr.slipping[i])
+        for tr, idx, line in zip(trajs, picks, trails, strict=True):
+            i = int(idx[f])
+            line.set_data(tr.pose[: i + 1, 0], tr.pose[: i + 1, 1])
+        frac = f / (frames - 1)
+        for line, arr in extra_lines:
+            j = round(frac * (len(arr) - 1)) + 1
+            line.set_data(arr[:j, 0], arr[:j, 1])
+        stamp.set_text(f"t = {times[f]:5.2f} s")
+        return []
+
+    return SandboxAnimation(fig, update, frames=frames, interval=interval, blit=False,
+                            repeat=True, colors=colors)
