@@ -1,55 +1,86 @@
-# wheelkin: one command to build the book, one to test everything. Each target sets itself up.
+# wheelkin: one command to build the book, one to test everything. Each target sets itself up
+# from a fresh clone: it creates .venv and installs the pinned stack (requirements.txt) first.
 SHELL := /bin/bash
 .DEFAULT_GOAL := help
 PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+PORT ?= 8000
+# Guard for `make notebooks` (whole run, seconds); the budget is 5 minutes on 2 cores.
+NOTEBOOKS_TIMEOUT ?= 900
+# Every test run: no pytest cache, the summary of skips/failures at the end.
+PYTEST := $(BIN)/python -m pytest -p no:cacheprovider
 
-.PHONY: help setup book test lint unit notebooks nbval browser serve bench clean
+# Deterministic kernels for nbval, exactly as tools/execute_notebooks.py runs them.
+NB_ENV := PYTHONHASHSEED=0 MPLBACKEND=module://matplotlib_inline.backend_inline \
+  SOURCE_DATE_EPOCH=1767225600 TZ=UTC LC_ALL=C.UTF-8 PYDEVD_DISABLE_FILE_VALIDATION=1
+
+LAYERS := lint unit nbval book browser
+
+.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean
 
 help:
 	@echo "make book       build the HTML book into _build/html (set-up included)"
-	@echo "make test       ruff, library tests, strict nbval, book build, browser tests"
+	@echo "make test       ruff, library tests + doctests, strict nbval, book build, browser tests"
 	@echo "make notebooks  re-execute every notebook in place, deterministically"
-	@echo "make serve      serve _build/html on http://127.0.0.1:8000"
-	@echo "make bench      run the benchmarks and update benchmarks/RESULTS.md"
+	@echo "make serve      build, then serve _build/html on http://127.0.0.1:$(PORT)"
+	@echo "make bench      run every benchmark (benchmarks/run_all.py)"
+	@echo "make clean      remove build output and caches"
 
 $(STAMP): requirements.txt pyproject.toml
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -r requirements.txt
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -r requirements.txt
 	$(BIN)/python -m pip check
 	$(BIN)/python -m ipykernel install --sys-prefix --name python3 >/dev/null
 	touch $(STAMP)
 
 setup: $(STAMP)
 
-book: $(STAMP)
+# JavaScript for the offline site (MathJax, require.js, widget manager) from package.json.
+vendor: $(STAMP)
 	$(BIN)/python tools/vendor_assets.py
-	rm -rf _build/html
+
+book: vendor
+	rm -rf _build/html _build/.doctrees _build/jupyter_execute
 	$(BIN)/jupyter-book build . -W -n --keep-going
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
 
 unit: $(STAMP)
-	$(BIN)/python -m pytest -n 2 tests src/wheelkin --ignore=tests/browser
+	$(PYTEST) -n 2 tests src/wheelkin --ignore=tests/browser
 
 nbval: $(STAMP)
-	$(BIN)/python -m pytest --nbval notebooks -n 2 --dist loadfile -p no:randomly \
-	  --nbval-sanitize-with tools/nbval_sanitize.cfg -o addopts="" -o testpaths=notebooks
+	$(NB_ENV) PYTHONPATH=tools $(PYTEST) -p nbval_jupyter_history \
+	  --nbval notebooks -n 2 --dist loadfile --nbval-current-env \
+	  --nbval-sanitize-with tools/nbval_sanitize.cfg --nbval-cell-timeout 300 \
+	  -o addopts="-ra" -o testpaths=notebooks
 
 browser: $(STAMP)
-	$(BIN)/python -m pytest tests/browser -o addopts="" -p no:cacheprovider
+	$(PYTEST) tests/browser -o addopts="-ra" --timeout 900
 
-test: lint unit nbval book browser
+# Every layer runs even when an earlier one failed; the summary names the failed ones.
+test: $(STAMP)
+	@passed=(); failed=(); \
+	for layer in $(LAYERS); do \
+	  echo; echo "================ make test: $$layer ================"; \
+	  start=$$(date +%s); \
+	  if $(MAKE) --no-print-directory $$layer; then passed+=($$layer); \
+	  else failed+=($$layer); fi; \
+	  echo "---------------- $$layer: $$(( $$(date +%s) - start )) s"; \
+	done; \
+	echo; echo "================ make test summary ================"; \
+	echo "passed: $${passed[*]:-none}"; echo "failed: $${failed[*]:-none}"; \
+	echo "layers: $${#passed[@]} passed, $${#failed[@]} failed"; \
+	test $${#failed[@]} -eq 0
 
 notebooks: $(STAMP)
-	timeout 900 $(BIN)/python tools/execute_notebooks.py notebooks/*.ipynb
+	timeout $(NOTEBOOKS_TIMEOUT) $(BIN)/python tools/execute_notebooks.py notebooks/[0-9][0-9]_*.ipynb
 
 serve: book
-	$(BIN)/python -m http.server --bind 127.0.0.1 --directory _build/html 8000
+	@echo "serving http://127.0.0.1:$(PORT)/ (Ctrl-C to stop)"
+	$(BIN)/python -m http.server --bind 127.0.0.1 --directory _build/html $(PORT)
 
 bench: $(STAMP)
 	$(BIN)/python benchmarks/run_all.py

@@ -1,0 +1,30 @@
+"""Where the built book is, which pages it has, and how chromium is started."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+from book_pages import NON_CHAPTER_NOTEBOOKS, toc_files  # noqa: E402, F401
+
+SITE = ROOT / "_build" / "html"
+SCREENSHOTS = ROOT / "_build" / "screenshots"
+CHROMIUM = Path("/usr/bin/chromium")
+CHROMIUM_ARGS = [
+    "--no-sandbox",  # CI runs as root
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-first-run",
+    "--disable-quic",
+]
+PAGES = toc_files()
+IN_CI = os.environ.get("CI", "").lower() in ("1", "true", "yes")
+
+#: Console errors that are known upstream noise, as (substring, why it is harmless). Keep this
+#: list short and explain every entry; an error that is ours must be fixed, not listed here.
+ALLOWED_CONSOLE_ERRORS: list[tuple[str, str]] = []
