@@ -29,7 +29,7 @@ from execute_notebooks import (  # noqa: E402
 MAX_BYTES = 3_000_000
 NOTEBOOKS = notebooks()
 IDS = [p.stem for p in NOTEBOOKS]
-FIX = "re-run `.venv/bin/python tools/execute_notebooks.py {path}`"
+FIX = "re-run `.venv/bin/python tools/execute_notebooks.py notebooks/{path.name}`"
 
 #: Output text that must never be stored: absolute paths of this machine, memory addresses.
 LEAKS = {
