@@ -606,7 +606,7 @@ def go_to_point_twist(pose, goal, speed, max_omega, dt=None) -> np.ndarray:
     if step is None:
         out = np.stack([bx / safe_t, by / safe_t, dth / safe_t], axis=-1)
     else:
-        f = np.minimum(step / safe_t, 1.0)
+        f = step / np.maximum(safe_t, step)  # min(dt / T, 1) without overflow
         phi = f * dth
         a = np.sinc(phi / np.pi)                             # sin(phi)/phi
         b = np.sin(phi / 2) * np.sinc(phi / (2 * np.pi))     # (1 - cos(phi))/phi

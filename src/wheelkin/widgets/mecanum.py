@@ -21,6 +21,7 @@ import numpy as np
 from matplotlib.animation import FuncAnimation
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.patches import Polygon
+from matplotlib.ticker import MaxNLocator
 
 from wheelkin import frames
 from wheelkin.mecanum import (
@@ -83,7 +84,7 @@ class MecanumDrawing:
             if label_wheels:
                 txt = ax.text(0, 0, name, ha="center", va="center", fontsize=8,
                               zorder=zorder + 3)
-                self.labels.append((txt, np.array([cx, cy + sy * 2.2 * wheel_half_width])))
+                self.labels.append((txt, np.array([cx + sx * 1.7 * r, cy])))
         self._wheel_pts = np.array(wheels)
         self._wheels = PolyCollection(self._wheel_pts, facecolors="0.25", edgecolors="k",
                                       linewidths=0.8, alpha=0.85 * alpha, zorder=zorder + 1)
@@ -161,11 +162,13 @@ def simulate_go_to_point(start, goal, speed, max_omega, *, geometry=EXAMPLE_GEOM
 
 
 def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
+                  plan_label: str = "predicted", path_label: str = "path",
                   extra_paths=None, frames_count: int = 60, title: str | None = None,
                   texts=None, limits=None, figsize=(5, 4), dpi: int = 72) -> FuncAnimation:
     """A kernel-free animation of the vehicle moving through ``poses`` (N, 3).
 
-    ``plan`` (M, 2): drawn dashed (e.g. the predicted path). ``extra_paths``: {label: (N, 2)}
+    ``plan`` (M, 2): drawn dashed, labelled ``plan_label`` (e.g. the predicted path); the
+    vehicle's own trail is labelled ``path_label``. ``extra_paths``: {label: (N, 2)}
     drawn progressively with the vehicle (e.g. the sandbox's path). ``texts``: one caption
     string per frame (optional). ``limits``: ((xmin, xmax), (ymin, ymax)).
     """
@@ -179,7 +182,7 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
     pts = [poses[:, :2]]
     if plan is not None:
         plan = np.asarray(plan, dtype=float)
-        ax.plot(plan[:, 0], plan[:, 1], "k--", lw=1, label="predicted")
+        ax.plot(plan[:, 0], plan[:, 1], "k--", lw=1, label=plan_label)
         pts.append(plan[:, :2])
     extra = {k: np.asarray(p, dtype=float) for k, p in (extra_paths or {}).items()}
     pts += [p[:, :2] for p in extra.values()]
@@ -190,7 +193,9 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
         limits = ((lo[0], hi[0]), (lo[1], hi[1]))
     ax.set_xlim(*limits[0])
     ax.set_ylim(*limits[1])
-    (trail,) = ax.plot([], [], "C0-", lw=1.5, label="kinematics" if extra else "path")
+    ax.xaxis.set_major_locator(MaxNLocator(5))
+    ax.yaxis.set_major_locator(MaxNLocator(5))
+    (trail,) = ax.plot([], [], "C0-", lw=1.5, label=path_label)
     extra_lines = {}
     for i, (label, _) in enumerate(extra.items()):
         (extra_lines[label],) = ax.plot([], [], f"C{i + 1}-", lw=1.5, label=label)
