@@ -18,9 +18,8 @@ Work in the body frame with the twist xi = (vx, vy, w) and the mass matrix M = d
 (the reference point is the mass centre). Row i of the constraint Jacobian J is the direction
 d_i of one constraint at its wheel's contact point p_i, acting on the twist:
 J_i = (d_x, d_y, p_x d_y - p_y d_x). The requested contact velocities are b = B phi (phi the
-wheel rates; B holds r_w on rolling rows, 0 on lateral rows, r_w (u . e) on roller rows). With
-a given steering, J is constant: the effective mass A = J M^-1 J^T and its pseudo-inverse
-A^+ are computed once per steering configuration (a rover re-computes them when it steers).
+wheel rates; B holds r_w on rolling rows, 0 on lateral rows, r_w (u . e) on roller rows). For
+a given steering, J is constant, and so is the effective mass A = J M^-1 J^T.
 
 Let xi_p be the twist the body would have after the step with no wheel forces (its world
 velocity kept, its frame turned by w dt: this is how the centripetal impulse of a turn is
@@ -28,8 +27,11 @@ charged to the tyres). The impulses lambda (one per row) give xi' = xi_p + M^-1 
 
 1. *Stick*: lambda = A^+ (b - J xi_p). If the commands are consistent (b lies in the range of
    J) this gives J xi' = b exactly: xi' is the kinematic twist, whatever xi_p was. If also every
-   wheel's impulse is within its cap, that is the answer. All of it is one precomputed affine
-   map of (phi, xi_p): one small matrix-vector product per step.
+   wheel's impulse is within its cap, that is the answer. Because J has full column rank,
+   A^+ = J^+T M J^+ with J^+ = (J^T J)^-1 J^T, so xi' = J^+ b = P phi and
+   lambda = J (J^T J)^-1 M (xi' - xi_p): the least impulses that make the momentum change.
+   (J^T J) is the same for every steering (a wheel's rolling and lateral directions are
+   orthonormal), so a steering change costs only P: a few dozen float operations per step.
 2. *Slip*: otherwise xi' minimises the convex function
 
    F(xi) = 1/2 (xi - xi_p)^T M (xi - xi_p) + sum_w mu N_w dt * |J_w xi - b_w|
@@ -137,7 +139,7 @@ def dissipation_objective(xi, xi_pred, J, b, mass_diag, caps, rows_per_wheel) ->
     return float(0.5 * dx @ (np.asarray(mass_diag) * dx) + caps @ np.sqrt((s * s).sum(1)))
 
 
-@dataclass
+@dataclass(slots=True)
 class ContactResult:
     """Outcome of one contact solve."""
 
@@ -155,6 +157,7 @@ class _Warm:
     xi: np.ndarray | None = None
     lam: np.ndarray | None = None
     consistent_key: object = None
+    consistent_rates: list | None = None
     consistent: bool = False
     counts: dict = field(default_factory=dict)
 
@@ -309,8 +312,37 @@ class _Partition:
         return tuple(new)
 
 
+class _Base:
+    """What does not depend on the steering: masses, caps, and C = (J^T J)^-1.
+
+    For a conventional wheel the rolling and lateral rows are orthonormal in (x, y), so their
+    contribution to J^T J does not depend on the steering angle; a mecanum wheel is not
+    steered. So C is one constant 3x3 matrix per vehicle.
+    """
+
+    def __init__(self, spec: VehicleSpec, dt: float) -> None:
+        self.spec, self.dt = spec, dt
+        J, _, _ = constraint_rows(spec, [0.0] * len(spec.steered_names))
+        JtJ = J.T @ J
+        self.C = np.linalg.inv(JtJ)
+        self.C_list = self.C.tolist()
+        self.n = len(spec.wheel_names)
+        self.k = len(J) // self.n
+        self.mass_diag = np.array([spec.mass, spec.mass, spec.inertia])
+        loads = np.array([w.load_fraction for w in spec.driven_wheels]) * spec.mass * GRAVITY
+        self.caps = spec.mu * loads * dt  # impulse cap per wheel, N s
+        self.stick_flags = (False,) * self.n
+        self.stick_speeds = (0.0,) * self.n
+        where = {name: i for i, name in enumerate(spec.steered_names)}
+        self.table = tuple(
+            (w.position[0], w.position[1], w.heading, w.radius, w.kind == "mecanum",
+             w.roller_angle, where.get(w.name, -1),
+             (float(cap) * (1.0 + CAP_TOLERANCE)) ** 2)
+            for w, cap in zip(spec.driven_wheels, self.caps, strict=True))
+
+
 class ContactModel:
-    """The precomputed contact maps of one vehicle in one steering configuration.
+    """The contact maps of one vehicle in one steering configuration.
 
     Parameters
     ----------
@@ -319,78 +351,128 @@ class ContactModel:
         Steering angles (``spec.steered_names`` order), rad.
     dt : float
         Step, s (the caps are impulses, mu N dt).
+    base : optional
+        The steering-independent part, shared between a robot's configurations.
+
+    The stick path runs in plain floats: with P = J^+ B (3 x n) and C = (J^T J)^-1,
+    xi' = P phi, h = C M (xi' - xi_p), and a wheel's impulse is lambda_w = J_w h, whose length
+    for a conventional wheel is |(h_x - p_y h_w, h_y + p_x h_w)| whatever its steering. The
+    numpy matrices of the slip path are built on first use.
     """
 
-    def __init__(self, spec: VehicleSpec, steering: tuple, dt: float) -> None:
-        self.spec = spec
-        self.dt = dt
-        J, B, owner = constraint_rows(spec, steering)
-        self.J, self.B, self.owner = J, B, owner
-        self.n = len(spec.wheel_names)
-        self.m = len(J)
-        self.k = self.m // self.n  # rows per wheel: 1 (mecanum) or 2
-        self.mass_diag = np.array([spec.mass, spec.mass, spec.inertia])
-        minv = 1.0 / self.mass_diag
-        self.minv = minv
-        loads = np.array([w.load_fraction for w in spec.driven_wheels]) * spec.mass * GRAVITY
-        self.caps = spec.mu * loads * dt  # impulse cap per wheel, N s
-        self.row_caps = self.caps[owner]
-        WJt = (J * minv).T  # M^-1 J^T, (3, m)
-        self.WJt = WJt
-        n, m = self.n, self.m
-        M = self.mass_diag
-        # With J of full column rank (every vehicle here), A^+ = J^+T M J^+ with
-        # J^+ = (J^T J)^-1 J^T, so the stick twist is J^+ b and the impulses are the
-        # minimum-norm ones that make the momentum change: lambda = J^+T M (xi' - xi_p).
-        JtJ = J.T @ J
-        if np.linalg.det(JtJ) > 1e-12 * np.trace(JtJ) ** 3:
-            Jp = np.linalg.solve(JtJ, J.T)
-        else:  # pragma: no cover - a vehicle whose wheels cannot fix its twist
-            Jp = np.linalg.pinv(J, rcond=1e-10)
-        self.Jp = Jp
-        # Stick map: y = D @ (phi, xi_p) -> (lambda / cap per row, xi', consistency residual).
-        D = np.zeros((2 * m + 3, n + 3))
-        JpB = Jp @ B
-        D[m:m + 3, :n] = JpB
-        D[m:m + 3, n:] = np.eye(3) - Jp @ J
-        D[:m] = (Jp.T * M) @ (D[m:m + 3] - np.hstack([np.zeros((3, n)), np.eye(3)]))
-        D[m + 3:, :n] = J @ JpB - B
-        D[:m] /= self.row_caps[:, None]
-        self.D = D
-        self.stick_flags = (False,) * n
-        self.stick_speeds = (0.0,) * n
+    def __init__(self, spec: VehicleSpec, steering: tuple, dt: float, base: _Base | None = None
+                 ) -> None:
+        if base is None:
+            base = _Base(spec, dt)
+        self.base, self.spec, self.dt = base, spec, dt
+        self.steering = tuple(float(a) for a in steering)
+        self.n, self.k = base.n, base.k
+        self.m = self.n * self.k
+        self.mass_diag, self.caps = base.mass_diag, base.caps
+        self.stick_flags, self.stick_speeds = base.stick_flags, base.stick_speeds
+        (c0, c1, c2), (c3, c4, c5), (c6, c7, c8) = base.C_list
+        steer = self.steering
+        fast, cols = [], []
+        for px, py, heading, radius, is_mecanum, gamma, slot, cap2 in base.table:
+            h = heading + steer[slot] if slot >= 0 else heading
+            ex, ey = math.cos(h), math.sin(h)
+            if is_mecanum:
+                a = h + math.pi / 2 + gamma
+                dx, dy = math.cos(a), math.sin(a)
+                coef = radius * (dx * ex + dy * ey)
+            else:
+                dx, dy, coef = ex, ey, radius
+            r2 = px * dy - py * dx
+            cols.append((coef * (c0 * dx + c1 * dy + c2 * r2), coef * (c3 * dx + c4 * dy + c5 * r2),
+                         coef * (c6 * dx + c7 * dy + c8 * r2)))
+            fast.append((px, py, dx, dy, coef, cap2, not is_mecanum))
+        self._cols = tuple(cols)
+        self._fast = tuple(fast)
+        self._C = (c0, c1, c2, c3, c4, c5, c6, c7, c8)
+        self._M = (spec.mass, spec.mass, spec.inertia)
+        self._np_ready = False
         self._block_data = None
         self._partitions: dict = {}
+
+    def _numpy(self) -> None:
+        """Build the matrices of the slip path."""
+        if self._np_ready:
+            return
+        J, B, owner = constraint_rows(self.spec, self.steering)
+        self._J, self._B, self._owner = J, B, owner
+        self._WJt = (J / self.mass_diag).T  # M^-1 J^T, (3, m)
+        self._np_ready = True
+
+    @property
+    def J(self) -> np.ndarray:
+        """Constraint Jacobian (m, 3), rows grouped by wheel (see :func:`constraint_rows`)."""
+        self._numpy()
+        return self._J
+
+    @property
+    def B(self) -> np.ndarray:
+        """Requested contact velocities per wheel rate, b = B @ phi, (m, n)."""
+        self._numpy()
+        return self._B
+
+    @property
+    def WJt(self) -> np.ndarray:
+        """M^-1 J^T, (3, m)."""
+        self._numpy()
+        return self._WJt
 
     # ---------------------------------------------------------------- fast path
     def solve(self, rates, xi_pred, warm: _Warm) -> ContactResult:
         """Impulses for one step: the twist after them and the slip flags.
 
-        ``rates`` are the wheel rates over the step (rad/s), ``xi_pred`` the free-flight twist.
+        ``rates`` are the wheel rates over the step (rad/s, a list), ``xi_pred`` the
+        free-flight twist.
         """
-        z = np.array((*rates, *xi_pred))
-        y = self.D @ z
-        m = self.m
-        lam = y[:m]
-        if self.k == 2:
-            l2 = lam * lam
-            worst = (l2[0::2] + l2[1::2]).max()
-        else:
-            worst = (lam * lam).max()
-        key = (id(self), tuple(rates))
-        if warm.consistent_key != key:
-            warm.consistent_key = key
-            warm.consistent = bool(np.abs(y[m + 3:]).max() <= SLIP_TOLERANCE)
-        if worst <= (1.0 + CAP_TOLERANCE) ** 2 and warm.consistent:
+        u = v = w = 0.0
+        for (a, b, c), phi in zip(self._cols, rates, strict=True):
+            u += a * phi
+            v += b * phi
+            w += c * phi
+        mx, my, mw = self._M
+        gx, gy, gw = mx * (u - xi_pred[0]), my * (v - xi_pred[1]), mw * (w - xi_pred[2])
+        c0, c1, c2, c3, c4, c5, c6, c7, c8 = self._C
+        hx = c0 * gx + c1 * gy + c2 * gw
+        hy = c3 * gx + c4 * gy + c5 * gw
+        hw = c6 * gx + c7 * gy + c8 * gw
+        ok = True
+        for px, py, dx, dy, _coef, cap2, conventional in self._fast:
+            lx, ly = hx - py * hw, hy + px * hw
+            if conventional:
+                q = lx * lx + ly * ly
+            else:
+                q = dx * lx + dy * ly
+                q *= q
+            if q > cap2:
+                ok = False
+                break
+        if warm.consistent_key is not self or warm.consistent_rates != rates:
+            warm.consistent_key, warm.consistent_rates = self, list(rates)
+            consistent = True
+            for (px, py, dx, dy, coef, _cap2, conventional), phi in zip(self._fast, rates,
+                                                                        strict=True):
+                cx, cy = u - py * w, v + px * w
+                if abs(dx * cx + dy * cy - coef * phi) > SLIP_TOLERANCE or (
+                        conventional and abs(dx * cy - dy * cx) > SLIP_TOLERANCE):
+                    consistent = False
+                    break
+            warm.consistent = consistent
+        if ok and warm.consistent:
             warm.partition = None
-            return ContactResult(y[m:m + 3].tolist(), self.stick_flags, self.stick_speeds,
-                                 "stick")
-        return self._solve_slip(np.asarray(rates, float), np.asarray(xi_pred, float), y, warm)
+            return ContactResult([u, v, w], self.stick_flags, self.stick_speeds, "stick")
+        self._numpy()
+        lam_rows = (self.J @ np.array((hx, hy, hw))).reshape(self.n, self.k)
+        return self._solve_slip(np.asarray(rates, float), np.asarray(xi_pred, float), lam_rows,
+                                warm)
 
     # ---------------------------------------------------------------- slip path
-    def _solve_slip(self, rates, xp, y_stick, warm: _Warm) -> ContactResult:
+    def _solve_slip(self, rates, xp, lam_rows, warm: _Warm) -> ContactResult:
         b = self.B @ rates
-        n, m = self.n, self.m
+        n = self.n
 
         def follow(guess, start):
             """Active set: solve a partition, correct it, until Coulomb's law holds."""
@@ -409,7 +491,6 @@ class ContactModel:
                 guess = res[1]
             return None
 
-        lam_rows = (y_stick[:m] * self.row_caps).reshape(n, self.k)
         norms = np.sqrt((lam_rows ** 2).sum(1))
         guesses = []
         if warm.partition is not None:

@@ -159,6 +159,22 @@ class Wheel:
         return self.width if self.width is not None else 0.6 * self.radius
 
 
+def _constrains_twist(driven) -> bool:
+    """True if the driven wheels' constraints (at zero steering) have rank 3 on the twist."""
+    rows = []
+    for w in driven:
+        px, py = w.position
+        h = w.heading
+        if w.kind == "mecanum":
+            a = h + math.pi / 2 + w.roller_angle
+            dirs = [(math.cos(a), math.sin(a))]
+        else:
+            dirs = [(math.cos(h), math.sin(h)), (-math.sin(h), math.cos(h))]
+        rows += [(dx, dy, px * dy - py * dx) for dx, dy in dirs]
+    sv = np.linalg.svd(np.array(rows), compute_uv=False)
+    return len(sv) == 3 and sv[-1] > 1e-9 * sv[0]
+
+
 def polygon_inertia(mass: float, vertices) -> float:
     """Yaw moment of inertia of a uniform polygonal plate about the body-frame origin.
 
@@ -274,6 +290,9 @@ class VehicleSpec:
         total = sum(w.load_fraction for w in wheels)
         if abs(total - 1.0) > 1e-9:
             raise ValueError(f"wheels' load_fraction must add up to 1, got {total!r}")
+        if not _constrains_twist(driven):
+            raise ValueError("wheels must fix all three body velocities: at least two "
+                             "conventional wheels apart, or three mecanum wheels")
         object.__setattr__(self, "wheels", wheels)
         object.__setattr__(self, "mu", V.positive("mu", self.mu))
         if self.steps_per_rev is not None:
@@ -566,31 +585,49 @@ def ideal_commands(spec: VehicleSpec, twist, steering=None) -> tuple[np.ndarray,
     vx, vy, w = (float(x) for x in V.shaped("twist", twist, (3,)).reshape(3))
     k = len(spec.steered_names)
     if steering is None:
-        current = np.zeros(k)
+        current = (0.0,) * k
     else:
-        current = V.shaped("steering", steering, (k,)).reshape(k)
-    rates = []
-    angles = dict(zip(spec.steered_names, current.tolist(), strict=True))
+        current = tuple(V.shaped("steering", steering, (k,)).reshape(k).tolist())
+    rates, angles = _ideal(command_table(spec), vx, vy, w, current)
+    return np.array(rates), np.array(angles)
+
+
+def command_table(spec: VehicleSpec) -> tuple:
+    """Per driven wheel, what :func:`ideal_commands` needs (plain floats, computed once)."""
+    where = {name: i for i, name in enumerate(spec.steered_names)}
+    table = []
     for wheel in spec.driven_wheels:
         px, py = wheel.position
+        h = wheel.heading
+        ex, ey = math.cos(h), math.sin(h)
+        ux = uy = 0.0
+        if wheel.kind == "mecanum":
+            a = h + math.pi / 2 + wheel.roller_angle
+            ux, uy = math.cos(a), math.sin(a)
+        table.append((wheel.kind, px, py, h, ex, ey, ux, uy, wheel.radius,
+                      where.get(wheel.name, -1)))
+    return tuple(table)
+
+
+def _ideal(table: tuple, vx: float, vy: float, w: float, current: tuple
+           ) -> tuple[list, tuple]:
+    """:func:`ideal_commands` on plain floats (no validation)."""
+    rates = []
+    angles = list(current)
+    for kind, px, py, h, ex, ey, ux, uy, r, slot in table:
         cx, cy = vx - w * py, vy + w * px
-        if wheel.kind == "steered":
+        if kind == "steered":
             speed = math.hypot(cx, cy)
             if speed < 1e-12:
                 sign, speed = 1.0, 0.0
             else:
-                angles[wheel.name], sign = _wrap_half(math.atan2(cy, cx) - wheel.heading)
-            rates.append(sign * speed / wheel.radius)
-            continue
-        h = wheel.heading
-        ex, ey = math.cos(h), math.sin(h)
-        if wheel.kind == "fixed":
-            rates.append((ex * cx + ey * cy) / wheel.radius)
+                angles[slot], sign = _wrap_half(math.atan2(cy, cx) - h)
+            rates.append(sign * speed / r)
+        elif kind == "fixed":
+            rates.append((ex * cx + ey * cy) / r)
         else:  # mecanum
-            a = h + math.pi / 2 + wheel.roller_angle
-            ux, uy = math.cos(a), math.sin(a)
-            rates.append((ux * cx + uy * cy) / (wheel.radius * (ux * ex + uy * ey)))
-    return np.array(rates), np.array([angles[name] for name in spec.steered_names])
+            rates.append((ux * cx + uy * cy) / (r * (ux * ex + uy * ey)))
+    return rates, tuple(angles)
 
 
 #: The firmware robot (Radon Ulzer, a Zumo-class differential drive): track 0.085 m, wheel

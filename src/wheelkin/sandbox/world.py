@@ -42,13 +42,34 @@ import pymunk
 
 from wheelkin import _validate as V
 
-from .contact import ContactModel, _Warm
+from .contact import ContactModel, _Base, _Warm
 from .sensors import Encoder
-from .vehicles import VehicleSpec, ideal_commands
+from .vehicles import VehicleSpec, _ideal, command_table, ideal_commands
 
 __all__ = ["Robot", "Trajectory", "World"]
 
 _ROBOT, _WALL = 1, 2
+
+try:  # pymunk's C setters, without its Python property layers (called four times a step)
+    from pymunk._chipmunk_cffi import lib as _lib
+
+    _set_velocity, _set_angular_velocity = _lib.cpBodySetVelocity, _lib.cpBodySetAngularVelocity
+    _set_position, _set_angle = _lib.cpBodySetPosition, _lib.cpBodySetAngle
+    _C_SETTERS = True
+except (ImportError, AttributeError):  # pragma: no cover - a pymunk without them
+    _C_SETTERS = False
+
+    def _set_velocity(body, v):
+        body._owner.velocity = v
+
+    def _set_angular_velocity(body, w):
+        body._owner.angular_velocity = w
+
+    def _set_position(body, p):
+        body._owner.position = p
+
+    def _set_angle(body, a):
+        body._owner.angle = a
 
 
 @dataclass(frozen=True)
@@ -106,16 +127,19 @@ class Robot:
         self._x, self._y, self._theta = (float(v) for v in p)
         self._u, self._v, self._w = (float(v) for v in tw)
         self._steer = (0.0,) * len(spec.steered_names)
+        self._table = command_table(spec)
         rates, steer = ideal_commands(spec, tw, self._steer)
         self._steer = tuple(float(a) for a in steer)
         self._cmd = [float(r) for r in rates]
         self._rates = list(self._cmd)
+        self._step_rates = self._rates
         self._angles = [0.0] * self._n
         self._slipping = (False,) * self._n
         self._slip_speed = (0.0,) * self._n
         self._distance = 0.0
         self._touching = 0
         self._models: dict = {}
+        self._base = _Base(spec, self._dt)
         self._model = self._get_model(self._steer)
         self._warm = _Warm()
         tau = spec.motor_time_constant
@@ -137,6 +161,7 @@ class Robot:
         shape.collision_type = _ROBOT
         body.position_func = self._position_func
         self.body, self.shape = body, shape
+        self._handle = body._body if _C_SETTERS else _Owner(body)
 
     # ------------------------------------------------------------------ commands
     def set_wheel_rates(self, rates) -> None:
@@ -160,7 +185,9 @@ class Robot:
             raise ValueError(f"angles must have shape ({k},), got shape {a.shape}")
         if np.any(np.abs(a) > math.pi):
             raise ValueError(f"angles must be in [-pi, pi], got {a.tolist()}")
-        steer = tuple(a.tolist())
+        self._steer_to(tuple(a.tolist()))
+
+    def _steer_to(self, steer: tuple) -> None:
         if steer != self._steer:
             self._steer = steer
             self._model = self._get_model(steer)
@@ -171,18 +198,17 @@ class Robot:
         See :func:`~wheelkin.sandbox.vehicles.ideal_commands`: what the wheels cannot follow
         (a skid steer's or a differential drive's sideways velocity) is left to friction.
         """
-        tw = (V.finite("vx", vx), V.finite("vy", vy), V.finite("omega", omega))
-        rates, steer = ideal_commands(self.spec, tw, self._steer)
-        if len(steer):
-            self.set_steering(steer)
-        self._cmd = rates.tolist()
+        rates, steer = _ideal(self._table, V.finite("vx", vx), V.finite("vy", vy),
+                              V.finite("omega", omega), self._steer)
+        self._steer_to(steer)
+        self._cmd = rates
 
     def _get_model(self, steer: tuple) -> ContactModel:
         model = self._models.get(steer)
         if model is None:
             if len(self._models) >= 64:
                 self._models.clear()
-            model = ContactModel(self.spec, steer, self._dt)
+            model = ContactModel(self.spec, steer, self._dt, self._base)
             self._models[steer] = model
         return model
 
@@ -269,9 +295,9 @@ class Robot:
         self._u, self._v, self._w = u, v, w
         th = self._theta
         c, s = math.cos(th), math.sin(th)
-        body = self.body
-        body.velocity = (c * u - s * v, s * u + c * v)
-        body.angular_velocity = w
+        handle = self._handle
+        _set_velocity(handle, (c * u - s * v, s * u + c * v))
+        _set_angular_velocity(handle, w)
         if self._lag is None:
             self._rates = rates
         else:
@@ -319,11 +345,15 @@ class Robot:
         self._y += s * dxb + c * dyb
         self._theta = th + a
         self._distance += math.hypot(u, v) * dt
-        body = self.body
-        body.position = (self._x, self._y)
-        body.angle = self._theta
+        _set_position(self._handle, (self._x, self._y))
+        _set_angle(self._handle, self._theta)
 
     _hit = False
+
+
+class _Owner:  # pragma: no cover - only with a pymunk lacking the C setters
+    def __init__(self, body):
+        self._owner = body
 
 
 def _segments(walls) -> list[tuple[tuple[float, float], tuple[float, float]]]:
@@ -421,16 +451,19 @@ class World:
         """Advance ``n`` steps of ``dt``, holding every command."""
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
             raise ValueError(f"n must be an integer >= 0, got {n!r}")
-        robots = self.robots
-        space_step = self.space.step
-        dt = self.dt
+        advance = self._advance
         for _ in range(int(n)):
-            for robot in robots:
-                robot._pre_step()
-            space_step(dt)
-            for robot in robots:
-                robot._post_step()
-            self.steps += 1
+            advance()
+
+    def _advance(self) -> None:
+        """One step of every robot (see the module docstring)."""
+        robots = self.robots
+        for robot in robots:
+            robot._pre_step()
+        self.space.step(self.dt)
+        for robot in robots:
+            robot._post_step()
+        self.steps += 1
 
     def run(
         self,
@@ -467,45 +500,49 @@ class World:
         steps = math.ceil(duration / self.dt - 1e-9)
         logs = [[] for _ in self.robots]
         stamps = []
+        pairs = list(zip(self.robots, logs, strict=True))
 
         def record():
             stamps.append(self.steps)
-            for robot, log in zip(self.robots, logs, strict=True):
+            for robot, log in pairs:
+                # One flat tuple of floats per record (split into arrays at the end).
                 log.append((robot._x, robot._y, robot._theta, robot._u, robot._v, robot._w,
-                            robot._distance, robot._touching > 0, tuple(robot._angles),
-                            robot._slipping, robot._slip_speed, tuple(robot._cmd),
-                            tuple(getattr(robot, "_step_rates", robot._rates)), robot._steer))
+                            robot._distance, robot._touching > 0, *robot._angles,
+                            *robot._slipping, *robot._slip_speed, *robot._cmd,
+                            *robot._step_rates, *robot._steer))
 
         record()
         dt = self.dt
+        advance = self._advance
         for k in range(1, steps + 1):
             if controller is not None:
-                controller(self.time + 0.5 * dt, self)
-            self.step(1)
+                controller((self.steps + 0.5) * dt, self)
+            advance()
             if k % record_every == 0 or k == steps:
                 record()
         stamps_arr = np.array(stamps, dtype=np.int64)
-        out = [self._trajectory(robot, log, stamps_arr)
-               for robot, log in zip(self.robots, logs, strict=True)]
+        out = [self._trajectory(robot, log, stamps_arr) for robot, log in pairs]
         return out[0] if len(out) == 1 else out
 
     def _trajectory(self, robot: Robot, log: list, stamps: np.ndarray) -> Trajectory:
         n, k = robot._n, len(robot.spec.steered_names)
-        cols = list(zip(*log, strict=True))
-        angles = np.array(cols[8], dtype=float).reshape(-1, n)
+        table = np.array(log, dtype=float).reshape(len(log), 8 + 5 * n + k)
+        cols = iter(np.split(table, np.cumsum([3, 3, 1, 1, n, n, n, n, n]), axis=1))
+        pose, twist, distance, contact = next(cols), next(cols), next(cols), next(cols)
+        angles, slipping, slip_speed, commanded, rates, steering = (next(cols) for _ in range(6))
         return Trajectory(
             t=stamps * self.dt,
-            pose=np.column_stack(cols[0:3]).astype(float),
-            twist=np.column_stack(cols[3:6]).astype(float),
-            wheel_angles=angles,
+            pose=pose.copy(),
+            twist=twist.copy(),
+            wheel_angles=angles.copy(),
             encoder_counts=robot.encoder.counts(angles, stamps),
-            slipping=np.array(cols[9], dtype=bool).reshape(-1, n),
-            slip_speed=np.array(cols[10], dtype=float).reshape(-1, n),
-            commanded_rates=np.array(cols[11], dtype=float).reshape(-1, n),
-            wheel_rates=np.array(cols[12], dtype=float).reshape(-1, n),
-            steering=np.array(cols[13], dtype=float).reshape(len(log), k),
-            contact=np.array(cols[7], dtype=bool),
-            distance=np.array(cols[6], dtype=float),
+            slipping=slipping.astype(bool),
+            slip_speed=slip_speed.copy(),
+            commanded_rates=commanded.copy(),
+            wheel_rates=rates.copy(),
+            steering=steering.copy(),
+            contact=contact[:, 0].astype(bool),
+            distance=distance[:, 0].copy(),
             wheel_names=robot.spec.wheel_names,
             steered_names=robot.spec.steered_names,
         )
