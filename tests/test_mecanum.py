@@ -26,6 +26,7 @@ from wheelkin.mecanum import (
     forward_kinematics,
     forward_matrix,
     go_to_point_twist,
+    grip_usage,
     inverse_kinematics,
     inverse_matrix,
     limit_speed,
@@ -344,6 +345,9 @@ def test_go_to_point_at_goal_and_vectorised():
         (lambda: go_to_point_twist((0, 0, 0), (1, 1, 1), -1.0, 1.0), "speed"),
         (lambda: go_to_point_twist((0, 0, 0), (1, 1, 1), 1.0, 0.0), "max_omega"),
         (lambda: go_to_point_twist((0, 0, 0), (1, 1, 1), 1.0, 1.0, dt=0.0), "dt"),
+        (lambda: grip_usage(float("nan"), 0.0, 0.8), "accel_x"),
+        (lambda: grip_usage(0.0, 1.0, -0.8), "mu"),
+        (lambda: grip_usage(0.0, 1.0, 0.8, roller_angle=0.0), "roller_angle"),
     ],
 )
 def test_bad_input_names_the_parameter(call, name):
@@ -391,3 +395,82 @@ def test_panels_sweep_without_raising():
                     panel.redraw(**{cname: value})
         finally:
             panel.close()
+
+
+# --- grip and the sandbox ---------------------------------------------------------------------
+
+def _min_max_wheel_force(ax, ay, gamma, a=0.3, b=0.2, mass=1.0):
+    """Independent: the smallest max |f_i| with sum f_i u_i = m a and zero torque (1-D search)."""
+    s_sign = np.array([-1.0, 1.0, 1.0, -1.0])
+    pos = np.array([[a, b], [a, -b], [-a, b], [-a, -b]])
+    u = np.column_stack([np.full(4, math.sin(gamma)), s_sign * math.cos(gamma)])
+    torque = pos[:, 0] * u[:, 1] - pos[:, 1] * u[:, 0]
+    A = np.vstack([u.T, torque])
+    rhs = np.array([mass * ax, mass * ay, 0.0])
+    f0 = np.linalg.lstsq(A, rhs, rcond=None)[0]
+    n = np.linalg.svd(A)[2][-1]
+    # max_i |f0_i + t n_i| is convex and piecewise linear in t: its minimum is at a crossing
+    candidates = [0.0]
+    for i in range(4):
+        for j in range(4):
+            for sgn in (1.0, -1.0):
+                den = n[i] - sgn * n[j]
+                if abs(den) > 1e-12:
+                    candidates.append((sgn * f0[j] - f0[i]) / den)
+    return min(np.max(np.abs(f0 + t * n)) for t in candidates)
+
+
+@pytest.mark.parametrize("gamma", [math.pi / 4, math.pi / 3, 0.4])
+def test_grip_usage_matches_a_min_max_force_solve(gamma):
+    rng = np.random.default_rng(5)
+    for ax, ay in rng.uniform(-6, 6, (40, 2)):
+        needed = _min_max_wheel_force(ax, ay, gamma)  # N per kg
+        cap = 0.7 * 9.81 / 4
+        np.testing.assert_allclose(grip_usage(ax, ay, 0.7, gamma), needed / cap, rtol=1e-9)
+
+
+def test_sandbox_commands_equal_inverse_kinematics():
+    from wheelkin import sandbox
+
+    rng = np.random.default_rng(9)
+    for gamma in (math.pi / 4, math.pi / 3):
+        spec = sandbox.mecanum(0.0762, 0.3048, 0.2286, roller_angle=gamma)
+        g = MecanumGeometry(0.0762, 0.3048, 0.2286, roller_angle=gamma)
+        for twist in rng.uniform(-2, 2, (20, 3)):
+            rates, _ = sandbox.ideal_commands(spec, twist)
+            np.testing.assert_allclose(rates, inverse_kinematics(*twist, g), rtol=1e-12,
+                                       atol=1e-12)
+
+
+def test_sandbox_follows_the_kinematics_within_friction():
+    from wheelkin import sandbox
+
+    spec = sandbox.mecanum(0.0762, 0.3048, 0.2286, mass=20.0)
+    twist = np.array([1.0, 0.5, 0.4])
+    world = sandbox.World(dt=1 / 240)
+    robot = world.add(spec, twist=twist)
+    robot.set_wheel_rates(inverse_kinematics(*twist, EXAMPLE_GEOMETRY))
+    traj = world.run(9.0)
+    predicted = frames.compose(np.zeros(3), frames.se2_exp(np.outer(traj.t, twist), 1.0))
+    assert traj.distance[-1] > 10.0
+    assert not traj.slipping.any()
+    assert np.max(np.hypot(*(traj.pose[:, :2] - predicted[:, :2]).T)) < 1e-5  # 0.01 mm
+
+
+@pytest.mark.parametrize(("heading", "usage_per_a"), [("held", 2.0), ("rotating", math.sqrt(2))])
+def test_sandbox_slips_where_grip_usage_passes_one(heading, usage_per_a):
+    # circle of radius 1.5 m: held heading needs (|cos| + |sin|) sqrt2 a <= mu g at worst 2a;
+    # rotating heading needs sqrt2 a (sideways)
+    from wheelkin import sandbox
+
+    spec = sandbox.mecanum(0.0762, 0.3048, 0.2286, mass=20.0)
+    radius, mu_g = 1.5, spec.mu * 9.81
+    for usage, slips in ((0.97, False), (1.03, True)):
+        accel = usage * mu_g / usage_per_a
+        lap = 2 * math.pi * math.sqrt(radius / accel)
+        world = sandbox.World(dt=1 / 240)
+        robot = world.add(spec, twist=circle_twist(radius, lap, 0.0, heading=heading))
+        traj = world.run(lap, controller=lambda t, w, lap=lap, robot=robot:
+                         robot.set_wheel_rates(inverse_kinematics(
+                             *circle_twist(radius, lap, t, heading=heading), EXAMPLE_GEOMETRY)))
+        assert traj.slipping.any() == slips, (heading, usage)

@@ -74,6 +74,7 @@ __all__ = [
     "forward_kinematics",
     "forward_matrix",
     "go_to_point_twist",
+    "grip_usage",
     "inverse_kinematics",
     "inverse_matrix",
     "limit_speed",
@@ -372,6 +373,57 @@ def max_rim_speed(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
     vx_a, vy_a, w_a = _broadcast(vx=v.finite_array("vx", vx), vy=v.finite_array("vy", vy),
                                  omega=v.finite_array("omega", omega))
     return np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k
+
+
+def grip_usage(accel_x, accel_y, mu, roller_angle=math.pi / 4, gravity=9.81) -> np.ndarray:
+    r"""Share of the tyres' grip that a body acceleration needs (above 1: the wheels slip).
+
+    A mecanum wheel can push on the floor only along its floor roller's axis
+    :math:`(\sin\gamma, s_i\cos\gamma)`, and at most with :math:`\mu N_i`. With the weight
+    shared equally (:math:`N_i = mg/4`) and no angular acceleration, the smallest largest
+    wheel force that gives the body the acceleration :math:`(a_x, a_y)` (body frame, any
+    velocity) is :math:`\tfrac m4(|a_x|/\sin\gamma + |a_y|/\cos\gamma)`, so
+
+    .. math:: u = \frac{|a_x|/\sin\gamma + |a_y|/\cos\gamma}{\mu g} \le 1 .
+
+    At 45 degrees: :math:`|a_x| + |a_y| \le \mu g/\sqrt2`, a diamond, like the speed limit of
+    :func:`max_rim_speed`. Straight ahead or sideways a mecanum vehicle can use only
+    :math:`1/\sqrt2` of the grip of ordinary wheels, diagonally only half (two wheels push,
+    the other two cannot). A circle of radius :math:`R` at speed :math:`v` needs
+    :math:`v^2/R` towards the centre: sideways in the body with the heading rotating, in every
+    body direction with the heading held.
+
+    Parameters
+    ----------
+    accel_x, accel_y : float or array_like
+        Body-frame acceleration of the centre, m/s^2.
+    mu : float
+        Friction coefficient, > 0.
+    roller_angle : float
+        :math:`\gamma`, rad, in (0, pi/2).
+    gravity : float
+        m/s^2, > 0 (the sandbox's 9.81 by default).
+
+    Returns
+    -------
+    numpy.ndarray
+        The grip usage :math:`u` (dimensionless).
+
+    Examples
+    --------
+    >>> round(float(grip_usage(0.0, 5.0, 0.8)), 4)  # sideways, 5 m/s^2 on mu = 0.8
+    0.901
+    >>> round(float(grip_usage(3.0, 3.0, 0.8)), 4)  # diagonal, 4.24 m/s^2
+    1.0812
+    """
+    ax_a, ay_a = _broadcast(accel_x=v.finite_array("accel_x", accel_x),
+                            accel_y=v.finite_array("accel_y", accel_y))
+    mu_f = v.positive("mu", mu)
+    gamma = v.finite("roller_angle", roller_angle)
+    if not 0.0 < gamma < math.pi / 2:
+        raise ValueError(f"roller_angle must be in (0, pi/2) rad (exclusive), got {roller_angle!r}")
+    g = v.positive("gravity", gravity)
+    return (np.abs(ax_a) / math.sin(gamma) + np.abs(ay_a) / math.cos(gamma)) / (mu_f * g)
 
 
 class SpeedLimit(NamedTuple):

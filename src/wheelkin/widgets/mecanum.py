@@ -18,7 +18,6 @@ import math
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
-from matplotlib.animation import FuncAnimation
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator
@@ -36,12 +35,15 @@ from wheelkin.mecanum import (
     limit_speed,
     max_rim_speed,
 )
+from wheelkin.sandbox.render import SandboxAnimation
 from wheelkin.units import FOOT
 from wheelkin.widgets import Panel, register
 
 __all__ = ["MecanumDrawing", "animate_poses", "draw_mecanum", "predicted_path",
            "simulate_go_to_point"]
 
+#: Colour of a slipping wheel (as in the sandbox's drawings).
+SLIP_COLOUR = "#d62728"
 _POS_SIGNS = {"FL": (1, 1), "FR": (1, -1), "RL": (-1, 1), "RR": (-1, -1)}
 
 
@@ -101,8 +103,11 @@ class MecanumDrawing:
                                  ms=6)
         self.update(pose)
 
-    def update(self, pose) -> None:
-        """Move every artist to ``pose`` (x m, y m, theta rad)."""
+    def update(self, pose, slipping=None) -> None:
+        """Move every artist to ``pose`` (x m, y m, theta rad); paint slipping wheels red.
+
+        ``slipping``: four booleans (FL, FR, RL, RR), or None to leave the colours alone.
+        """
         x, y, th = (float(c) for c in pose)
         c, s = math.cos(th), math.sin(th)
         rot = np.array([[c, -s], [s, c]])
@@ -116,6 +121,8 @@ class MecanumDrawing:
         self._arrow.set_marker((3, 0, math.degrees(th) - 90))
         for txt, pt in self.labels:
             txt.set_position(pt @ rot.T + shift)
+        if slipping is not None:
+            self._wheels.set_facecolors([SLIP_COLOUR if slip else "0.25" for slip in slipping])
 
 
 def draw_mecanum(ax, geometry: MecanumGeometry = EXAMPLE_GEOMETRY, pose=(0.0, 0.0, 0.0),
@@ -164,9 +171,13 @@ def simulate_go_to_point(start, goal, speed, max_omega, *, geometry=EXAMPLE_GEOM
 def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
                   plan_label: str = "predicted", path_label: str = "path",
                   extra_paths=None, frames_count: int = 60, title: str | None = None,
-                  texts=None, limits=None, figsize=(5, 4), dpi: int = 72) -> FuncAnimation:
+                  texts=None, limits=None, slipping=None, figsize=(5, 4),
+                  dpi: int = 72) -> SandboxAnimation:
     """A kernel-free animation of the vehicle moving through ``poses`` (N, 3).
 
+    Frames are stored with a 64-colour palette (``wheelkin.sandbox.render.SandboxAnimation``),
+    which keeps a 40-frame player near 0.25 MB. ``slipping`` (N, 4) bool: wheels drawn red
+    while they slip (e.g. ``Trajectory.slipping`` of a sandbox run).
     ``plan`` (M, 2): drawn dashed, labelled ``plan_label`` (e.g. the predicted path); the
     vehicle's own trail is labelled ``path_label``. ``extra_paths``: {label: (N, 2)}
     drawn progressively with the vehicle (e.g. the sandbox's path). ``texts``: one caption
@@ -214,12 +225,12 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
         for name, path in extra.items():
             j = min(i, len(path) - 1)
             extra_lines[name].set_data(path[: j + 1, 0], path[: j + 1, 1])
-        car.update(poses[i])
+        car.update(poses[i], None if slipping is None else slipping[i])
         if texts is not None:
             label.set_text(texts[k])
         return []
 
-    return FuncAnimation(fig, update, frames=frames_count, interval=100, blit=False)
+    return SandboxAnimation(fig, update, frames=frames_count, interval=100, blit=False)
 
 
 # --------------------------------------------------------------------------------------------
