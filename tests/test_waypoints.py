@@ -554,3 +554,55 @@ def test_controllers_reject_bad_input():
         wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, max_wheel_rate=-1)
     with pytest.raises(ValueError, match="pose"):
         wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, pose=(0, 0))
+
+
+# --------------------------------------------------------------------------- the panel's model
+def test_reduced_model_is_an_ideal_diff_drive_with_chi_one():
+    pytest.importorskip("wheelkin.sandbox")
+    from wheelkin.widgets import waypoints as ww
+
+    # chi = 1, no lag, ideal encoders: the schedule drives it exactly along the plan
+    segs = wp.plan_segments(wp.LAB_WAYPOINTS)
+    cmds = wp.schedule(segs, R_W, D)
+    robot = ww.KinematicSkidSteer(segs[0].start, skid_factor=1.0, motor_time_constant=0.0)
+    for c in cmds:
+        robot.set_side_rates(c.left_rate, c.right_rate)
+        n = 50
+        for _ in range(n):
+            robot.step(c.duration / n)
+        np.testing.assert_allclose(robot.pose, c.segment.end, atol=1e-9)
+    # the encoders read the wheel angles (FL, FR, RL, RR) the schedule planned
+    planned = wp.planned_wheel_angles(cmds, 1e9)
+    np.testing.assert_allclose(robot.encoder_angles, planned[[0, 1, 0, 1]], atol=1e-9)
+
+
+def test_reduced_model_turns_chi_times_less_and_quantises_its_encoders():
+    pytest.importorskip("wheelkin.sandbox")
+    from wheelkin.widgets import waypoints as ww
+
+    assert ww.SKID_FACTOR == pytest.approx(1 + (0.05 / 0.06) ** 2)
+    robot = ww.KinematicSkidSteer((0, 0, 0), steps_per_rev=64, motor_time_constant=0.0)
+    robot.set_side_rates(-5.0, 5.0)
+    for _ in range(10):
+        robot.step(0.1)
+    ideal = 0.04 * 10.0 / 0.12 * 1.0  # rad after 1 s
+    assert robot.pose[2] == pytest.approx(ideal / ww.SKID_FACTOR)
+    counts = robot.encoder_angles / (2 * math.pi / 64)
+    np.testing.assert_allclose(counts, np.round(counts))  # whole counts
+    assert np.all(np.abs(robot.encoder_angles - [-5, 5, -5, 5]) <= math.pi / 64 + 1e-12)
+
+
+def test_lab_panel_builds_and_shows_the_geometric_track_failing():
+    pytest.importorskip("wheelkin.sandbox")
+    from wheelkin.widgets import waypoints as ww
+
+    panel = ww.lab_panel()
+    try:
+        good = panel.state.text.get_text()
+        assert "final error" in good
+        panel.redraw(track=ww.TRACK_CHOICES[1][1])
+        bad = panel.state.text.get_text()
+        final = float(bad.split("final error")[1].split("cm")[0])
+        assert final > 100  # the robot trusts its wheels and is lost by metres
+    finally:
+        panel.close()

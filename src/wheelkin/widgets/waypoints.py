@@ -1,0 +1,279 @@
+"""The waypoint-lab chapter's live panel (notebooks/07_waypoints) and its fast lap model.
+
+A lap of the sandbox takes seconds (the skid steer slips in every turn, and each slipping step
+is a small optimisation), too slow to follow a slider. The panel therefore drives a *reduced*
+model of the lab robot, :class:`KinematicSkidSteer`: a differential drive whose yaw rate is
+the wheels' ideal one divided by the skid factor :math:`\\chi` (the sandbox's, measured in the
+chapter: :math:`\\chi = 1 + a^2/b^2` for a pure spin with Coulomb friction), with the same
+first-order motor lag and the same encoders (:class:`wheelkin.sandbox.sensors.Encoder`). It has
+the interface of a sandbox robot, so the very same :class:`wheelkin.waypoints.FollowerController`
+drives it. The chapter checks it against the sandbox's closed-loop lap.
+
+The panel ``waypoints.lab`` runs a closed-loop lap with sliders for the cruising speed, the
+look-ahead distance, the heading gain of the turns in place, the encoder resolution and the
+track width the odometry assumes, and draws the maze, the plan, the true path and the estimate.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+import ipywidgets as widgets
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Polygon
+
+from wheelkin import waypoints as wp
+from wheelkin.odometry import integrate
+from wheelkin.sandbox import LAB_ROBOT
+from wheelkin.sandbox.sensors import Encoder
+from wheelkin.widgets import Panel, register
+
+__all__ = ["SKID_FACTOR", "KinematicSkidSteer", "LabView", "lab_panel", "surrogate_lap"]
+
+_A, _B = wp.LAB_HALF_WHEELBASE, wp.LAB_HALF_AXLE  # half wheelbase a, half axle b = d (m)
+#: Skid factor of the lab robot turning in place with Coulomb friction: 1 + a^2/b^2.
+SKID_FACTOR = 1.0 + (_A / _B) ** 2
+#: The lab robot's effective track (m): the geometric one, 2b, times the skid factor.
+EFFECTIVE_TRACK = 2 * _B * SKID_FACTOR
+MOTOR_TIME_CONSTANT = 0.05  # s, as in the chapter's sandbox runs
+PERIOD = 0.064  # s, the control period (Webots tutorial controllers)
+MAX_WHEEL_RATE = 10.0  # rad/s, Webots' default motor limit
+ENCODER_CHOICES = (("ideal", 0), ("4096 / rev", 4096), ("256 / rev", 256), ("64 / rev", 64),
+                   ("16 / rev", 16))
+TRACK_CHOICES = (("effective, 0.203 m (calibrated)", EFFECTIVE_TRACK),
+                 ("geometric, 0.12 m (the lab's)", 2 * _B))
+
+
+class KinematicSkidSteer:
+    """A reduced model of the lab robot with a sandbox robot's interface.
+
+    Each :meth:`step` of ``h`` seconds: the wheel rates approach their commands with the first
+    order lag :math:`\\tau` (exactly, over the step); with the step's mean rates
+    :math:`\\bar\\varphi_{L,R}`, the body moves on the arc of constant twist
+    :math:`v = r_w(\\bar\\varphi_L + \\bar\\varphi_R)/2`,
+    :math:`\\omega = r_w(\\bar\\varphi_R - \\bar\\varphi_L)/(2b\\chi)`.
+
+    Parameters
+    ----------
+    pose : (x, y, theta)
+    skid_factor : float
+        :math:`\\chi` >= 1 (1: an ideal differential drive).
+    steps_per_rev : int or None
+        Encoder counts per wheel revolution; None for ideal encoders.
+    motor_time_constant : float
+        :math:`\\tau` (s), >= 0.
+
+    Examples
+    --------
+    >>> robot = KinematicSkidSteer((0.0, 0.0, 0.0), skid_factor=2.0, motor_time_constant=0.0)
+    >>> robot.set_side_rates(-5.0, 5.0)
+    >>> for _ in range(100):
+    ...     robot.step(0.01)
+    >>> round(robot.pose[2], 6)  # ideal: 0.04 * 10 / 0.12 = 3.333 rad/s for 1 s; halved
+    1.666667
+    """
+
+    spec = LAB_ROBOT
+
+    def __init__(self, pose, *, skid_factor: float = SKID_FACTOR,
+                 steps_per_rev: int | None = None,
+                 motor_time_constant: float = MOTOR_TIME_CONSTANT) -> None:
+        self.start = tuple(float(a) for a in pose)
+        self.skid_factor = float(skid_factor)
+        self.tau = float(motor_time_constant)
+        self.encoder = Encoder(4, steps_per_rev or None)
+        self._cmd = np.zeros(4)
+        self._rates = np.zeros(4)
+        self._angles = np.zeros(4)
+        self._travel: list[tuple[float, float]] = []  # (left, right) rim travel per step, m
+        self.steps = 0
+
+    def set_side_rates(self, left: float, right: float) -> None:
+        """Left wheels (FL, RL) at ``left``, right wheels (FR, RR) at ``right``, rad/s."""
+        self._cmd = np.array([left, right, left, right], dtype=float)
+
+    @property
+    def encoder_angles(self) -> np.ndarray:
+        """The encoders' readings as wheel angles (rad), FL, FR, RL, RR."""
+        return self.encoder.angles(self.encoder.counts(self._angles, self.steps))
+
+    def step(self, h: float) -> None:
+        """Advance ``h`` seconds."""
+        if self.tau > 0:
+            decay = math.exp(-h / self.tau)
+            mean = self._cmd + (self._rates - self._cmd) * self.tau * (1 - decay) / h
+            self._rates = self._cmd + (self._rates - self._cmd) * decay
+        else:
+            mean = self._rates = self._cmd.copy()
+        r = wp.LAB_WHEEL_RADIUS
+        self._travel.append((r * (mean[0] + mean[2]) / 2 * h, r * (mean[1] + mean[3]) / 2 * h))
+        self._angles = self._angles + mean * h
+        self.steps += 1
+
+    def path(self) -> np.ndarray:
+        """Poses (steps + 1, 3) after each step, from the start: exact arcs of the mean twist
+        of each step, the track widened by the skid factor (:func:`wheelkin.odometry.integrate`
+        in mm)."""
+        x0, y0, th0 = self.start
+        if not self._travel:
+            return np.array([self.start])
+        poses = integrate(np.asarray(self._travel) * 1000.0, 1.0,
+                          2 * _B * self.skid_factor * 1000.0, method="exact",
+                          pose=(x0 * 1000.0, y0 * 1000.0, th0))
+        poses = np.vstack([[x0 * 1000.0, y0 * 1000.0, th0], poses])
+        poses[:, :2] /= 1000.0
+        return poses
+
+    @property
+    def pose(self) -> tuple[float, float, float]:
+        """The pose now (x, y, theta)."""
+        return tuple(float(a) for a in self.path()[-1])
+
+
+def surrogate_lap(*, speed: float = 0.3, lookahead: float = 0.15, heading_gain: float = 4.0,
+                  steps_per_rev: int | None = None, odometry_track_width: float = EFFECTIVE_TRACK,
+                  skid_factor: float = SKID_FACTOR, substeps: int = 4,
+                  max_time: float | None = None) -> dict:
+    """A closed-loop lap of the lab on :class:`KinematicSkidSteer`.
+
+    Returns a dict with ``t`` (s), ``truth`` and ``estimate`` (N, 3) at the control ticks,
+    ``finish_time`` (s or None), ``final_error`` (m, truth to P12), ``waypoint_errors`` (m).
+    ``max_time`` (s) defaults to twice the plan's length at ``speed`` plus 30 s.
+
+    >>> lap = surrogate_lap()
+    >>> lap["finish_time"] is not None and lap["final_error"] < 0.05
+    True
+    """
+    segments = wp.plan_segments(wp.LAB_WAYPOINTS)
+    robot = KinematicSkidSteer(segments[0].start, skid_factor=skid_factor,
+                               steps_per_rev=steps_per_rev)
+    follower = wp.PathFollower(segments, speed=speed, lookahead=lookahead,
+                               heading_gain=heading_gain)
+    ctrl = wp.FollowerController(robot, follower, wheel_radius=wp.LAB_WHEEL_RADIUS,
+                                 track_width=EFFECTIVE_TRACK,
+                                 odometry_track_width=odometry_track_width, period=PERIOD,
+                                 max_wheel_rate=MAX_WHEEL_RATE)
+    h = PERIOD / substeps
+    if max_time is None:
+        max_time = 2.0 * sum(s.length for s in segments) / speed + 30.0
+    for k in range(int(max_time / h)):
+        if (k % substeps == 0 and ctrl.finish_time is not None
+                and k * h > ctrl.finish_time + 1.0):
+            break
+        ctrl(k * h + 0.5 * h, None)
+        robot.step(h)
+    truth = robot.path()[::substeps]
+    estimate = np.array(ctrl.log_estimate)
+    n = min(len(truth), len(estimate))
+    return {
+        "t": np.array(ctrl.log_t[:n]),
+        "truth": truth[:n],
+        "estimate": estimate[:n],
+        "finish_time": ctrl.finish_time,
+        "final_error": float(np.hypot(*(truth[n - 1, :2] - wp.LAB_WAYPOINTS[-1]))),
+        "waypoint_errors": wp.waypoint_errors(truth[:n]),
+    }
+
+
+@lru_cache(maxsize=64)
+def _cached_lap(speed, lookahead, heading_gain, steps_per_rev, track):
+    return surrogate_lap(speed=speed, lookahead=lookahead, heading_gain=heading_gain,
+                         steps_per_rev=steps_per_rev or None, odometry_track_width=track)
+
+
+def _robot_outline(pose) -> np.ndarray:
+    x, y, th = pose
+    c, s = math.cos(th), math.sin(th)
+    body = np.asarray(LAB_ROBOT.body, dtype=float)
+    return np.stack([x + c * body[:, 0] - s * body[:, 1], y + s * body[:, 0] + c * body[:, 1]],
+                    axis=1)
+
+
+class LabView:
+    """The maze from above with the plan, a true path, an estimate and the robot."""
+
+    def __init__(self, ax) -> None:
+        self.ax = ax
+        for (x0, y0), (x1, y1) in wp.LAB_WALLS:
+            ax.plot([x0, x1], [y0, y1], color="k", lw=2.0, solid_capstyle="round")
+        plan = wp.sample_path(wp.plan_segments(wp.LAB_WAYPOINTS), spacing=0.02)
+        ax.plot(plan[:, 0], plan[:, 1], ls="--", color="0.55", lw=1.0, label="plan")
+        ax.plot(wp.LAB_WAYPOINTS[:, 0], wp.LAB_WAYPOINTS[:, 1], "o", color="0.3", ms=3)
+        (self.truth,) = ax.plot([], [], color="C0", lw=1.6, label="truth")
+        (self.estimate,) = ax.plot([], [], color="C3", lw=1.2, ls=":", label="estimate")
+        self.robot = Polygon(_robot_outline((1.5, -1.5, math.pi / 2)), closed=True,
+                             fc="C0", ec="k", alpha=0.8, zorder=5)
+        ax.add_patch(self.robot)
+        self.text = ax.text(0.02, 0.98, "", transform=ax.transAxes, va="top", fontsize=8,
+                            family="monospace",
+                            bbox=dict(fc="white", ec="0.7", alpha=0.9))
+        ax.set_xlim(-2.1, 2.1)
+        ax.set_ylim(-2.1, 2.1)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x, east (m)")
+        ax.set_ylabel("y, north (m)")
+        ax.legend(loc="lower left", fontsize=7, ncol=3, framealpha=0.9)
+
+    def show(self, truth, estimate=None, text: str = "") -> None:
+        """Draw a true path (N, 3), an optional estimate, the robot at the path's end."""
+        truth = np.asarray(truth, dtype=float)
+        self.truth.set_data(truth[:, 0], truth[:, 1])
+        if estimate is None or len(estimate) == 0:
+            self.estimate.set_data([], [])
+        else:
+            estimate = np.asarray(estimate, dtype=float)
+            self.estimate.set_data(estimate[:, 0], estimate[:, 1])
+        self.robot.set_xy(_robot_outline(truth[-1]))
+        self.text.set_text(text)
+
+
+def _setup():
+    fig, ax = plt.subplots(figsize=(5.5, 5.5))
+    view = LabView(ax)
+    ax.set_title("Closed-loop lap (fast kinematic skid-steer model)", fontsize=10)
+    fig.tight_layout()
+    return fig, view
+
+
+def _update(view: LabView, *, speed, lookahead, heading_gain, encoder, track) -> None:
+    try:
+        lap = _cached_lap(round(float(speed), 4), round(float(lookahead), 4),
+                          round(float(heading_gain), 4), int(encoder), float(track))
+    except ValueError as exc:  # pragma: no cover - every slider value is valid
+        view.show(np.array([[1.5, -1.5, math.pi / 2]]), text=f"cannot run: {exc}")
+        return
+    finish = lap["finish_time"]
+    clearance = float(wp.distance_to_walls(lap["truth"][:, :2]).min())
+    lines = [
+        f"lap time      {finish:6.2f} s" if finish is not None else "lap time      not finished",
+        f"final error   {lap['final_error'] * 100:6.1f} cm",
+        f"worst waypt   {lap['waypoint_errors'][1:].max() * 100:6.1f} cm",
+        f"wall gap min  {clearance * 100:6.1f} cm" + ("  (touch!)" if clearance < 0.12 else ""),
+    ]
+    view.show(lap["truth"], lap["estimate"], "\n".join(lines))
+
+
+@register("waypoints.lab")
+def lab_panel() -> Panel:
+    """Sliders for the closed-loop lap: speed, look-ahead, heading gain, encoders, track."""
+    style = {"description_width": "150px"}
+    layout = widgets.Layout(width="460px")
+    controls = {
+        "speed": widgets.FloatSlider(value=0.3, min=0.1, max=0.5, step=0.05,
+                                     description="cruise speed (m/s)", style=style,
+                                     layout=layout),
+        "lookahead": widgets.FloatSlider(value=0.15, min=0.05, max=0.5, step=0.05,
+                                         description="look-ahead (m)", style=style,
+                                         layout=layout),
+        "heading_gain": widgets.FloatSlider(value=4.0, min=1.0, max=10.0, step=1.0,
+                                            description="turn gain k_θ (1/s)", style=style,
+                                            layout=layout),
+        "encoder": widgets.Dropdown(options=ENCODER_CHOICES, value=0,
+                                    description="encoders", style=style, layout=layout),
+        "track": widgets.Dropdown(options=TRACK_CHOICES, value=EFFECTIVE_TRACK,
+                                  description="odometry track", style=style, layout=layout),
+    }
+    return Panel(controls, _setup, _update,
+                 title="The waypoint lab, closed loop: change the follower and the sensors")
