@@ -156,6 +156,18 @@ class Segment:
     centre: tuple[float, float] | None = None
     target: int | None = None
 
+    def _point(self, fraction: float) -> tuple[float, float]:
+        """(x, y) at one ``fraction`` in [0, 1], unchecked (the follower's inner loop)."""
+        x0, y0, t0 = self.start
+        if self.kind == "straight":
+            d = fraction * self.length
+            return x0 + d * math.cos(t0), y0 + d * math.sin(t0)
+        if self.kind == "arc":
+            theta = t0 + fraction * self.heading_change
+            return (self.centre[0] + self.radius * math.sin(theta),
+                    self.centre[1] - self.radius * math.cos(theta))
+        return x0, y0
+
     def pose_at(self, fraction) -> np.ndarray:
         """Poses (..., 3) at ``fraction`` in [0, 1] of the segment (of its length or angle).
 
@@ -690,8 +702,9 @@ class PathFollower:
             return (x - x0) * math.cos(t0) + (y - y0) * math.sin(t0)
         if seg.kind == "arc":
             cx, cy = seg.centre
-            swept = wrap_angle(math.atan2(y - cy, x - cx) - math.atan2(y0 - cy, x0 - cx))
-            return float(swept) * math.copysign(1.0, seg.heading_change) * abs(seg.radius)
+            swept = math.remainder(math.atan2(y - cy, x - cx) - math.atan2(y0 - cy, x0 - cx),
+                                   2 * math.pi)  # in [-pi, pi]
+            return swept * math.copysign(1.0, seg.heading_change) * abs(seg.radius)
         return 0.0
 
     def _turn(self, error: float) -> float:
@@ -701,8 +714,7 @@ class PathFollower:
     def _carrot(self, seg: Segment, s: float) -> tuple[float, float]:
         sc = max(s, 0.0) + self.lookahead
         if sc <= seg.length:
-            p = seg.pose_at(sc / seg.length)
-            return float(p[0]), float(p[1])
+            return seg._point(sc / seg.length)
         xe, ye, te = seg.end
         extra = sc - seg.length
         return xe + extra * math.cos(te), ye + extra * math.sin(te)
@@ -721,7 +733,7 @@ class PathFollower:
                     self.index += 1
                     continue
                 return 0.0, self._turn(error)
-            s = self.progress(p)
+            s = self.progress((x, y, theta))
             if s >= seg.length:
                 self.index += 1
                 continue
@@ -736,7 +748,7 @@ class PathFollower:
             if last or self.segments[self.index + 1].kind == "turn":
                 speed = min(speed, max(self.min_speed, self.approach_gain * (seg.length - s)))
             curvature = 2.0 * left / (ahead * ahead + left * left)
-            return speed, speed * curvature
+            return float(speed), float(speed * curvature)
         return 0.0, 0.0
 
 
@@ -830,8 +842,9 @@ class ScheduleController:
                 self.index += 1
                 self.switch_times.append(float(self._times[self.index]))
             dt = getattr(world, "dt", None)
-            if dt is not None:
-                # the step [t - dt/2, t + dt/2] may hold a switch: its mean rates keep the
+            if dt is not None and (self.done or t + dt / 2 > self._times[self.index + 1]
+                                   or t - dt / 2 < self._times[self.index]):
+                # a switch inside the step [t - dt/2, t + dt/2]: its mean rates keep the
                 # wheel angles exact at every step boundary
                 angles = planned_wheel_angles(self.commands, [t - dt / 2, t + dt / 2])
                 left, right = (angles[1] - angles[0]) / dt
