@@ -10,8 +10,9 @@ animations redraw in place, never rebuilding the figure. A slipping wheel is dra
 :class:`~matplotlib.animation.FuncAnimation` (trail, walls, a planned path, extra paths such as
 an odometry estimate, the time); show it in a static page with
 :func:`wheelkin.animation.show`, which gives the player stable element ids and alt text. Keep
-it small: 40-60 frames at 72 dpi and figsize (5, 4) make about 0.2-0.4 MB, because the
-frames are stored with a 64-colour palette (:class:`SandboxAnimation`).
+it small: 40-60 frames at 72 dpi and figsize (5, 4) make about 0.2-0.4 MB once
+:func:`~wheelkin.animation.to_html` has stored the frames with a palette. The frames are
+blitted (:class:`SandboxAnimation`): the axes are drawn once, then only what moves.
 
 Mecanum rollers are drawn as the rollers *touching the ground* (as if seen through the wheel
 from above): theirs is the axis the contact model uses, and in the X arrangement they form an
@@ -31,6 +32,7 @@ from tempfile import TemporaryDirectory
 import numpy as np
 from matplotlib.animation import FuncAnimation, HTMLWriter
 from matplotlib.axes import Axes
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrow, Polygon
@@ -249,45 +251,71 @@ def draw_vehicle(ax: Axes, spec: VehicleSpec, pose, steering=None, *, show_icr: 
 
 
 class _PaletteHTMLWriter(HTMLWriter):
-    """HTMLWriter whose embedded PNG frames are reduced to a small colour palette.
+    """HTMLWriter that draws frames fast, optionally with a small colour palette.
 
-    A top-down drawing has few colours besides the anti-aliasing; a 64-colour palette (no
-    dithering) makes each frame 3-4 times smaller and keeps re-rendering deterministic.
+    The figure's static part (axes, grid, walls, plan, legend) is drawn once; each frame then
+    restores it and draws only the moving artists (blitting), several times faster than
+    redrawing the figure. With ``colors``, frames are stored as palette PNGs (no dithering),
+    3-4 times smaller (:func:`wheelkin.animation.to_html` does that too, by default).
     """
 
-    def __init__(self, *args, colors: int = 64, **kwargs) -> None:
+    def __init__(self, *args, colors: int | None = None, dynamic=(), **kwargs) -> None:
         super().__init__(*args, **kwargs)
         self.colors = colors
+        self.dynamic = sorted(dynamic, key=lambda a: a.get_zorder())
+        self._background = None
 
     def setup(self, fig, outfile, dpi=None, frame_dir=None) -> None:
         super().setup(fig, outfile, dpi, frame_dir)
         self.frame_format = "png"
+        if not isinstance(fig.canvas, FigureCanvasAgg):
+            FigureCanvasAgg(fig)
 
     def grab_frame(self, **savefig_kwargs) -> None:
-        if not self.embed_frames or self._hit_limit:  # pragma: no cover - not used here
-            return super().grab_frame(**savefig_kwargs)
         from PIL import Image
 
-        raw = BytesIO()
-        self.fig.savefig(raw, format="png", dpi=self.dpi, **savefig_kwargs)
-        image = Image.open(raw).convert("RGB").quantize(
-            colors=self.colors, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+        canvas = self.fig.canvas
+        if self._background is None:
+            shown = [artist.get_visible() for artist in self.dynamic]
+            for artist in self.dynamic:
+                artist.set_visible(False)  # the background: everything that does not move
+            canvas.draw()
+            self._background = canvas.copy_from_bbox(self.fig.bbox)
+            for artist, visible in zip(self.dynamic, shown, strict=True):
+                artist.set_visible(visible)
+        canvas.restore_region(self._background)
+        for artist in self.dynamic:
+            self.fig.draw_artist(artist)
+        image = Image.frombuffer("RGBA", canvas.get_width_height(), canvas.buffer_rgba(),
+                                 "raw", "RGBA", 0, 1).convert("RGB")
+        if self.colors is not None:
+            image = image.quantize(colors=self.colors, method=Image.Quantize.MEDIANCUT,
+                                   dither=Image.Dither.NONE)
         out = BytesIO()
-        image.save(out, format="png", optimize=True)
+        image.save(out, format="png", compress_level=9 if self.colors else 6)
         data = base64.encodebytes(out.getvalue()).decode("ascii")
         self._total_bytes += len(data)
         self._saved_frames.append(data)
 
 
 class SandboxAnimation(FuncAnimation):
-    """A FuncAnimation whose :meth:`to_jshtml` embeds palette-reduced PNG frames."""
+    """A FuncAnimation whose :meth:`to_jshtml` blits its frames (``dynamic`` lists the artists
+    that move; the rest is drawn once) and optionally stores them with a palette of
+    ``colors`` colours."""
 
-    def __init__(self, *args, colors: int | None = 64, **kwargs) -> None:
+    def __init__(self, *args, colors: int | None = None, dynamic=(), **kwargs) -> None:
         self._colors = colors
+        self._dynamic = list(dynamic)
         super().__init__(*args, **kwargs)
 
+    _grabbing = False
+
+    def _post_draw(self, framedata, blit) -> None:
+        if not self._grabbing:  # the palette writer draws each frame itself
+            super()._post_draw(framedata, blit)
+
     def to_jshtml(self, fps=None, embed_frames=True, default_mode=None) -> str:
-        if self._colors is None or not embed_frames:
+        if not embed_frames:  # pragma: no cover - the book always embeds
             return super().to_jshtml(fps, embed_frames, default_mode)
         if fps is None:
             fps = 1000 / self._interval
@@ -297,8 +325,13 @@ class SandboxAnimation(FuncAnimation):
             with TemporaryDirectory() as tmpdir:
                 path = Path(tmpdir, "temp.html")
                 writer = _PaletteHTMLWriter(fps=fps, embed_frames=True,
-                                            default_mode=default_mode, colors=self._colors)
-                self.save(str(path), writer=writer)
+                                            default_mode=default_mode, colors=self._colors,
+                                            dynamic=self._dynamic)
+                self._grabbing = True
+                try:
+                    self.save(str(path), writer=writer, dpi=self._fig.dpi)
+                finally:
+                    self._grabbing = False
                 self._html_representation = path.read_text()
         return self._html_representation
 
@@ -327,7 +360,7 @@ def animate(
     names: Sequence[str] | None = None,
     interval: float | None = None,
     limits=None,
-    colors: int | None = 64,
+    colors: int | None = None,
 ) -> SandboxAnimation:
     """Animate recorded trajectories top-down.
 
@@ -361,7 +394,8 @@ def animate(
     limits : (xmin, xmax, ymin, ymax), optional
         Axes limits (default: fitted to everything drawn).
     colors : int or None
-        Palette size of the embedded frames (2..256; None = full colour, 3-4 times larger).
+        Palette size of the frames ``to_jshtml`` embeds (2..256), or None for full colour
+        (:func:`wheelkin.animation.to_html` re-encodes them with a palette anyway).
 
     Returns
     -------
@@ -475,5 +509,7 @@ def animate(
         stamp.set_text(f"t = {times[f]:5.2f} s")
         return []
 
+    dynamic = [a for d in drawings for a in d.artists] + trails
+    dynamic += [line for line, _ in extra_lines] + [stamp]
     return SandboxAnimation(fig, update, frames=frames, interval=interval, blit=False,
-                            repeat=True, colors=colors)
+                            repeat=True, colors=colors, dynamic=dynamic)
