@@ -606,3 +606,21 @@ def test_lab_panel_builds_and_shows_the_geometric_track_failing():
         assert final > 100  # the robot trusts its wheels and is lost by metres
     finally:
         panel.close()
+
+
+def test_every_slider_value_of_the_waypoint_panels_redraws():
+    pytest.importorskip("wheelkin.sandbox")
+    from wheelkin.widgets import all_panels, slider_values
+
+    panels = {k: f for k, f in all_panels().items() if k.startswith("waypoints.")}
+    assert panels
+    for factory in panels.values():
+        panel = factory()
+        try:
+            for name, control in panel.controls.items():
+                for value in slider_values(control, n=2):  # a lap each: the ends suffice
+                    panel.redraw(**{name: value})
+                    assert "lap time" in panel.state.text.get_text()
+                panel.redraw(**{name: control.value})
+        finally:
+            panel.close()
