@@ -28,6 +28,12 @@ __all__ = ["MAX_BYTES", "show", "to_html"]
 MAX_BYTES = 2_000_000
 
 _UUID = re.compile(r"_anim_img([0-9a-f]{32})")
+_FA_LINK = re.compile(r'<link rel="stylesheet"\s+href="https://[^"]*font-awesome[^"]*">')
+_ICONS = {
+    "fa-minus": "&minus;", "fa-fast-backward": "|&#9664;&#9664;", "fa-step-backward": "|&#9664;",
+    "fa-play fa-flip-horizontal": "&#9664;", "fa-pause": "II", "fa-play": "&#9654;",
+    "fa-step-forward": "&#9654;|", "fa-fast-forward": "&#9654;&#9654;|", "fa-plus": "+",
+}
 _FRAME = re.compile(r'(frames\[\d+\] = "data:image/png;base64,)((?:[A-Za-z0-9+/=]|\\\n)+)(")')
 
 
@@ -108,6 +114,11 @@ def to_html(
     if match is None:  # pragma: no cover - matplotlib changed its template
         raise RuntimeError("could not find the player's element id in matplotlib's HTML")
     out = raw.replace(match.group(1), new_id)
+    # matplotlib's player links Font Awesome 4 from a CDN for its button icons: drop the link
+    # (the book must work offline) and draw the icons with characters every font has.
+    out = _FA_LINK.sub("", out)
+    for icon, text in _ICONS.items():
+        out = out.replace(f'<i class="fa {icon}"></i>', f'<span aria-hidden="true">{text}</span>')
     if colors is not None:
         out = _FRAME.sub(lambda m: _palette_frame(m, int(colors)), out)
     out = out.replace(
