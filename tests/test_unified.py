@@ -474,3 +474,92 @@ def _sandbox_rover():
 
     return OPEN_SOURCE_ROVER
 
+
+
+# --- the chapter's exercises --------------------------------------------------------------------
+
+def test_exercise_references_agree_with_hand_calculations():
+    from wheelkin.exercises import unified as ex
+
+    # a wheel at (0.2, 0.1) rolling along x: contact velocity (vx - 0.1 w, vy + 0.2 w)
+    np.testing.assert_allclose(ex.wheel_rows(0.2, 0.1, 0.0), [[1, 0, -0.1], [0, 1, 0.2]],
+                               atol=1e-15)
+    # rolling along y (psi = 90 deg) at (0.3, 0): e = (0, 1), n = (-1, 0)
+    np.testing.assert_allclose(ex.wheel_rows(0.3, 0.0, math.pi / 2), [[0, 1, 0.3], [-1, 0, 0]],
+                               atol=1e-15)
+    # Siegwart et al.'s tricycle (steered front: delta_M = 2); a caster front leaves a
+    # differential drive; a fixed front wheel off the rear axle leaves straight driving only
+    assert tuple(ex.tricycle_mobility("steered")) == (1, 1, 2)
+    assert tuple(ex.tricycle_mobility("caster")) == (2, 0, 2)
+    assert tuple(ex.tricycle_mobility("swedish")) == (2, 0, 2)
+    assert tuple(ex.tricycle_mobility("fixed")) == (1, 0, 1)
+    # omni wheel at angle alpha rolling along alpha + 90 deg: phi = (-sin a vx + cos a vy + L w)/r
+    alpha = np.array([0.0, 2 * math.pi / 3, 4 * math.pi / 3])
+    vx, vy, w, r, L = 0.3, -0.2, 0.8, 0.04, 0.25
+    np.testing.assert_allclose(ex.omni_rates(vx, vy, w, r, L),
+                               (-np.sin(alpha) * vx + np.cos(alpha) * vy + L * w) / r, atol=1e-12)
+    np.testing.assert_allclose(ex.skid_steer_slip(0.3, 2.0, 0.06, 0.05), [0.1, 0.1, -0.1, -0.1],
+                               atol=1e-15)
+
+
+def test_exercises_pass_their_references_and_name_each_mistake():
+    from wheelkin.exercises import all_exercises
+
+    exercises = {n: e for n, e in all_exercises().items() if n.startswith("unified.")}
+    assert len(exercises) >= 3
+    for name, exercise in exercises.items():
+        assert exercise.check(exercise.reference).passed, name
+        for wrong, text in exercise.mistakes:
+            result = exercise.check(wrong)
+            assert not result.passed and result.kind == "specific", (name, result.message)
+            assert text in result.message
+
+        def stub(*args):
+            raise NotImplementedError
+
+        assert exercise.check(stub).kind == "not-written"
+
+
+def test_panel_sweeps_without_raising_and_the_animations_have_their_frames():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from wheelkin.widgets import all_panels, slider_values
+    from wheelkin.widgets import unified as panels
+
+    factories = {n: f for n, f in all_panels().items() if n.startswith("unified.")}
+    assert factories
+    for factory in factories.values():
+        panel = factory()
+        try:
+            for cname, control in panel.controls.items():
+                for value in slider_values(control, n=3):
+                    panel.redraw(**{cname: value})
+        finally:
+            panel.close()
+    twists = panels.tour_twists(40)
+    assert twists.shape == (40, 3)
+    np.testing.assert_allclose(np.hypot(twists[:20, 0], twists[:20, 1]), 0.3)
+    np.testing.assert_allclose(twists[-1], [0.0, 0.0, 1.5])
+    with pytest.raises(ValueError, match="frames"):
+        panels.tour_twists(3)
+
+
+def test_constraint_view_marks_exactly_the_wheels_that_must_slide():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from wheelkin.sandbox.render import SLIP_COLOUR
+    from wheelkin.widgets.unified import ConstraintView
+
+    view = ConstraintView(Figure())
+    view.update(0.0, 0.3, 0.0, steer=True)  # strafe left
+    red = {}
+    for name, item in zip(view.vehicles, view.items, strict=True):
+        colours = [matplotlib.colors.to_hex(p.get_facecolor()) for p in item["drawing"].wheels]
+        red[name] = [w.name for w, c in zip(item["spec"].wheels, colours, strict=True)
+                     if c == SLIP_COLOUR]
+    assert red == {"differential drive": ["L", "R"], "skid steer": ["FL", "FR", "RL", "RR"],
+                   "mecanum": [], "rover": ["LM", "RM"]}

@@ -1,0 +1,240 @@
+"""Exercises of the closing chapter, "One model for every wheel" (notebooks/08_one_model).
+
+Our frame (x forward, y left, omega counter-clockwise); SI.
+
+>>> from wheelkin.exercises import check
+>>> import numpy as np
+>>> def skid_steer_slip(v, omega, half_track, half_wheelbase):
+...     return omega * half_track * np.array([1.0, 1.0, -1.0, -1.0])  # b instead of a
+>>> print(check("unified.skid_steer_slip", skid_steer_slip).message)  # doctest: +ELLIPSIS
+✘ unified.skid_steer_slip: for v=0.3, omega=1, ...: the wheels slide sideways because ...
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from wheelkin.exercises import Case, Exercise
+from wheelkin.unified import (
+    WheelConstraint,
+    mobility,
+    rolling_row,
+    skid_steer_wheels,
+    sliding_row,
+    slip_residual,
+    wheel_rates,
+)
+
+__all__ = ["omni_rates", "skid_steer_slip", "tricycle_mobility", "wheel_rows"]
+
+
+# --- 1. the two rows of one wheel ----------------------------------------------------------------
+
+def wheel_rows(x, y, psi):
+    """Rolling row and no-side-slip row (a 2x3 array) of a conventional wheel at (x, y) m
+    rolling along the direction psi (rad) from the body x axis."""
+    w = WheelConstraint("W", (x, y), psi, 1.0, "fixed")
+    return np.array([rolling_row(w), sliding_row(w)])
+
+
+def _rows_omega_sign(x, y, psi):
+    rows = wheel_rows(x, y, psi)
+    rows[:, 2] *= -1.0
+    return rows
+
+
+def _rows_clockwise_normal(x, y, psi):
+    rows = wheel_rows(x, y, psi)
+    rows[1] *= -1.0
+    return rows
+
+
+def _rows_swapped(x, y, psi):
+    return wheel_rows(x, y, psi)[::-1]
+
+
+def _rows_no_rotation(x, y, psi):
+    rows = wheel_rows(x, y, psi)
+    rows[:, 2] = 0.0
+    return rows
+
+
+Exercise(
+    "unified.wheel_rows",
+    "Return a 2x3 array: first the rolling row J1 (with J1 . (vx, vy, omega) = r_w phi), then "
+    "the no-side-slip row C1, of a conventional wheel whose contact point is at (x, y) m and "
+    "whose rolling direction is at the angle psi (rad) from the body x axis.",
+    wheel_rows,
+    [Case((0.2, 0.1, 0.0)), Case((0.0, -0.3, math.pi / 3)), Case((-0.4, 0.25, -2.0)),
+     Case((0.3, 0.0, math.pi / 2))],
+    mistakes=[
+        (_rows_omega_sign,
+         "the omega column has the wrong sign: the contact point moves at v + omega z x p = "
+         "(vx - omega y, vy + omega x), so the third entry of the row for a direction d is "
+         "x d_y - y d_x."),
+        (_rows_clockwise_normal,
+         "the sliding row has the wrong sign: take n as the rolling direction turned "
+         "counter-clockwise by 90 degrees, n = (-sin psi, cos psi) (the row's sign does not "
+         "change the constraint, but the chapter fixes it this way)."),
+        (_rows_swapped, "the two rows are swapped: rolling row first, then the sliding row."),
+        (_rows_no_rotation,
+         "the omega column is missing: a turning body moves the contact point too "
+         "(omega z x p), unless the wheel sits at the reference point."),
+    ],
+)
+
+
+# --- 2. the mobility of a tricycle -------------------------------------------------------------
+
+def _tricycle(front_kind: str):
+    front = {"fixed": {}, "steered": {"steering": 0.3}, "caster": {},
+             "swedish": {"roller_angle": math.pi / 4}}
+    if front_kind not in front:
+        raise ValueError(f"front_kind must be one of {', '.join(map(repr, front))}; "
+                         f"got {front_kind!r}")
+    return (WheelConstraint("RL", (0.0, 0.2)), WheelConstraint("RR", (0.0, -0.2)),
+            WheelConstraint("F", (0.5, 0.0), kind=front_kind, **front[front_kind]))
+
+
+def tricycle_mobility(front_kind):
+    """(degree of mobility, steerability, manoeuvrability) of a tricycle: a fixed rear axle
+    (two fixed wheels) and one front wheel of the kind ``front_kind``."""
+    m = mobility(_tricycle(front_kind))
+    return np.array(m[:3], dtype=float)
+
+
+def _steered_adds_motion(front_kind):
+    m = tricycle_mobility(front_kind)
+    if front_kind == "steered":
+        return np.array([2.0, 1.0, 3.0])
+    return m
+
+
+def _caster_constrains(front_kind):
+    if front_kind in ("caster", "swedish"):
+        return np.array([1.0, 0.0, 1.0])
+    return tricycle_mobility(front_kind)
+
+
+def _steered_two(front_kind):
+    if front_kind == "steered":
+        return np.array([1.0, 2.0, 3.0])
+    return tricycle_mobility(front_kind)
+
+
+Exercise(
+    "unified.tricycle_mobility",
+    "A tricycle has a fixed rear axle (two fixed wheels at (0, +-0.2) m) and one front wheel "
+    "at (0.5, 0) m of the kind `front_kind` ('fixed', 'steered', 'caster' or 'swedish'). "
+    "Return (degree of mobility, degree of steerability, degree of manoeuvrability).",
+    tricycle_mobility,
+    [Case(("fixed",)), Case(("steered",)), Case(("caster",)), Case(("swedish",))],
+    mistakes=[
+        (_steered_adds_motion,
+         "a steered wheel still forbids sliding sideways at whatever angle it is turned to: "
+         "its row joins C1 and takes a motion away (delta_m = 1); what it adds is a steering "
+         "freedom (delta_s = 1)."),
+        (_caster_constrains,
+         "a caster's swivel (and a Swedish wheel's rollers) absorb any sideways velocity: such "
+         "a wheel adds no row to C1, so the tricycle keeps the two motions of a differential "
+         "drive."),
+        (_steered_two,
+         "the fixed rear axle already pins the ICR to its line: steering can only move the ICR "
+         "along it, one freedom, delta_s = min(rank C1s, 2 - rank C1f) = 1."),
+    ],
+)
+
+
+# --- 3. the wheel rates of an omni-wheel robot ----------------------------------------------------
+
+OMNI_NAMES = ("W1", "W2", "W3")
+
+
+def _omni(wheel_radius, centre_distance):
+    return tuple(
+        WheelConstraint(name, (centre_distance * math.cos(a), centre_distance * math.sin(a)),
+                        a + math.pi / 2, wheel_radius, "swedish", roller_angle=math.pi / 2)
+        for name, a in zip(OMNI_NAMES, (0.0, 2 * math.pi / 3, 4 * math.pi / 3), strict=True))
+
+
+def omni_rates(vx, vy, omega, wheel_radius, centre_distance):
+    """Wheel rates (rad/s) W1, W2, W3 of three omni wheels at 0, 120 and 240 degrees around
+    the centre, rolling counter-clockwise around it (rollers along the rim)."""
+    return wheel_rates(_omni(wheel_radius, centre_distance), (vx, vy, omega))
+
+
+def _omni_radial(vx, vy, omega, wheel_radius, centre_distance):
+    alpha = np.array([0.0, 2 * math.pi / 3, 4 * math.pi / 3])
+    return (np.cos(alpha) * vx + np.sin(alpha) * vy) / wheel_radius
+
+
+def _omni_no_distance(vx, vy, omega, wheel_radius, centre_distance):
+    alpha = np.array([0.0, 2 * math.pi / 3, 4 * math.pi / 3])
+    return (-np.sin(alpha) * vx + np.cos(alpha) * vy + omega) / wheel_radius
+
+
+def _omni_rim(vx, vy, omega, wheel_radius, centre_distance):
+    return omni_rates(vx, vy, omega, wheel_radius, centre_distance) * wheel_radius
+
+
+Exercise(
+    "unified.omni_rates",
+    "Three omni wheels (rollers along the rim) sit at distance `centre_distance` m from the "
+    "centre, at 0, 120 and 240 degrees from the body x axis (W1 straight ahead), each rolling "
+    "counter-clockwise around the centre. Return their rates W1, W2, W3 (rad/s) for the twist "
+    "(vx, vy, omega).",
+    omni_rates,
+    [Case((0.0, 0.0, 1.0, 0.03, 0.2)), Case((0.5, 0.0, 0.0, 0.03, 0.2)),
+     Case((0.0, 0.4, 0.0, 0.05, 0.15)), Case((0.3, -0.2, 0.8, 0.04, 0.25))],
+    wheel_names=OMNI_NAMES,
+    mistakes=[
+        (_omni_radial,
+         "those wheels roll outwards, along the line from the centre: each rolls along the "
+         "tangent, at 90 degrees to it (psi_i = alpha_i + 90 degrees)."),
+        (_omni_no_distance,
+         "the spin term needs the lever arm: the rim moves at omega times the distance to the "
+         "centre (L omega), not at omega."),
+        (_omni_rim, "these are rim speeds (m/s): divide by the wheel radius to get rad/s."),
+    ],
+)
+
+
+# --- 4. how fast a skid steer's wheels slide ---------------------------------------------------
+
+SKID_NAMES = ("FL", "FR", "RL", "RR")
+
+
+def skid_steer_slip(v, omega, half_track, half_wheelbase):
+    """Sideways sliding speed (m/s, along each wheel's left) of a skid steer's wheels FL, FR,
+    RL, RR driving the twist (v, 0, omega)."""
+    return slip_residual(skid_steer_wheels(half_track, half_wheelbase, 0.05), (v, 0.0, omega))
+
+
+def _skid_track(v, omega, half_track, half_wheelbase):
+    return omega * half_track * np.array([1.0, 1.0, -1.0, -1.0])
+
+
+def _skid_with_speed(v, omega, half_track, half_wheelbase):
+    return skid_steer_slip(v, omega, half_track, half_wheelbase) + v
+
+
+Exercise(
+    "unified.skid_steer_slip",
+    "A skid steer has fixed wheels FL (a, b), FR (a, -b), RL (-a, b), RR (-a, -b) "
+    "(a = half_wheelbase, b = half_track, m). Return each wheel's sideways sliding speed "
+    "(m/s, positive to the vehicle's left) when it drives the twist (v, 0, omega).",
+    skid_steer_slip,
+    [Case((0.3, 1.0, 0.06, 0.05)), Case((0.0, -2.0, 0.2, 0.3)), Case((1.0, 0.5, 0.25, 0.1))],
+    wheel_names=SKID_NAMES,
+    mistakes=[
+        (_skid_track,
+         "the wheels slide sideways because the body turns about a point between the axles: "
+         "the lateral speed is omega times the distance along x (the half wheelbase a), "
+         "not across (the half track b)."),
+        (_skid_with_speed,
+         "the forward speed v is along each wheel's rolling direction: it adds nothing to the "
+         "sideways slide."),
+    ],
+)

@@ -1,0 +1,280 @@
+"""The closing chapter's live panel and its kernel-free twins (notebooks/08_one_model).
+
+- :class:`ConstraintView`: the book's four vehicles side by side (the sandbox's ready-made
+  specs), each asked for the same body twist: its steered wheels turned for it (by
+  :func:`wheelkin.unified.steer_for_twist`), the velocity of every wheel's contact point, the
+  sideways slip the twist would need (red: the wheel cannot follow it by rolling), the ICR,
+  and the numbers of :func:`wheelkin.unified.mobility` and
+  :func:`wheelkin.unified.slip_residual`. ``update(vx, vy, omega, steer)`` moves the artists.
+- Panel ``unified.constraints`` (registered): sliders for the twist and a switch for the
+  steering.
+- :func:`twist_tour_animation`: the same view while the twist tours forward, every direction
+  of a strafe, a tightening turn and a spin on the spot, for the HTML book.
+- :func:`manoeuvre_animation`: sandbox runs of the four vehicles side by side.
+
+Our frame (x forward, y left, omega counter-clockwise), SI.
+"""
+
+from __future__ import annotations
+
+import math
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.figure import Figure
+
+from wheelkin import unified
+from wheelkin.sandbox import LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER, RADON_ULZER
+from wheelkin.sandbox.render import PALETTE, SandboxAnimation, draw_vehicle
+from wheelkin.widgets import Panel, register
+
+__all__ = ["VEHICLES", "ConstraintView", "constraints_panel", "manoeuvre_animation",
+           "tour_twists", "twist_tour_animation"]
+
+#: The book's four vehicles as the sandbox builds them, in the chapter's order.
+VEHICLES = {
+    "differential drive": RADON_ULZER,
+    "skid steer": LAB_ROBOT,
+    "mecanum": MECANUM_ROBOT,
+    "rover": OPEN_SOURCE_ROVER,
+}
+SLIDE_COLOUR = "#d62728"
+VELOCITY_COLOUR = "#1f77b4"
+#: Side slip below this (m/s) counts as none.
+SLIP_FLOOR = 1e-9
+
+
+def _reach(spec) -> float:
+    return max(max(math.hypot(*p) for p in spec.body),
+               max(math.hypot(*w.position) + w.radius for w in spec.wheels))
+
+
+class ConstraintView:
+    """The four vehicles asked for one body twist (see the module docstring).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        An empty figure; one axes per vehicle is added in a row.
+    vehicles : dict of str to VehicleSpec
+        Default :data:`VEHICLES`.
+    """
+
+    def __init__(self, fig: Figure, vehicles: dict | None = None) -> None:
+        self.vehicles = dict(VEHICLES if vehicles is None else vehicles)
+        self.fig = fig
+        n = len(self.vehicles)
+        self.axes, self.items = [], []
+        for k, (name, spec) in enumerate(self.vehicles.items()):
+            ax = fig.add_subplot(1, n, k + 1)
+            reach = _reach(spec)
+            lim = 1.5 * reach
+            ax.set_xlim(-lim, lim)
+            ax.set_ylim(-1.25 * lim, lim)
+            ax.set_aspect("equal")
+            ax.set_xticks([])
+            ax.set_yticks([])
+            wheels = unified.from_sandbox(spec)
+            mob = unified.mobility(wheels)
+            ax.set_title(f"{name}\nδm = {mob.degree_of_mobility}, "
+                         f"δs = {mob.degree_of_steerability}", fontsize=9)
+            drawing = draw_vehicle(ax, spec, (0.0, 0.0, 0.0), show_icr=True,
+                                   twist=(0.0, 0.0, 0.0), color=PALETTE[k])
+            points = np.array([w.position for w in wheels])
+            zeros = np.zeros(len(wheels))
+            velocity = ax.quiver(points[:, 0], points[:, 1], zeros, zeros, angles="xy",
+                                 scale_units="xy", scale=1.0, color=VELOCITY_COLOUR,
+                                 width=0.012, zorder=8)
+            slide = ax.quiver(points[:, 0], points[:, 1], zeros, zeros, angles="xy",
+                              scale_units="xy", scale=1.0, color=SLIDE_COLOUR, width=0.014,
+                              zorder=9)
+            text = ax.text(0.5, 0.03, "", transform=ax.transAxes, ha="center", va="bottom",
+                           fontsize=9, bbox={"facecolor": "white", "edgecolor": "none",
+                                             "alpha": 0.85})
+            # arrows: 0.5 m/s drawn as 0.8 of the vehicle's reach
+            self.axes.append(ax)
+            self.items.append({"spec": spec, "wheels": wheels, "drawing": drawing,
+                               "velocity": velocity, "slide": slide, "text": text,
+                               "points": points, "scale": 0.8 * reach / 0.5})
+        fig.subplots_adjust(left=0.01, right=0.99, bottom=0.02, top=0.86, wspace=0.05)
+
+    @property
+    def artists(self) -> list:
+        """Every artist that :meth:`update` changes."""
+        out = []
+        for item in self.items:
+            out += item["drawing"].artists
+            out += [item["velocity"], item["slide"], item["text"]]
+        return out
+
+    def update(self, vx: float, vy: float, omega: float, steer: bool = True) -> list:
+        """Ask every vehicle for the twist (vx m/s, vy m/s, omega rad/s); with ``steer`` the
+        steered wheels are turned for it, otherwise they stay straight. Returns
+        :attr:`artists`."""
+        twist = np.array([float(vx), float(vy), float(omega)])
+        for item in self.items:
+            spec = item["spec"]
+            wheels = item["wheels"]
+            if steer:
+                wheels = unified.steer_for_twist(wheels, twist)
+            else:  # casters trail whatever happens
+                steered = unified.steer_for_twist(wheels, twist)
+                wheels = tuple(s if w.kind == "caster" else w
+                               for w, s in zip(wheels, steered, strict=True))
+            by_name = {w.name: w for w in wheels}
+            steering = [by_name[name].steering for name in spec.steered_names]
+            residual = unified.slip_residual(wheels, twist)
+            pts = item["points"]
+            vel = np.column_stack([twist[0] - twist[2] * pts[:, 1],
+                                   twist[1] + twist[2] * pts[:, 0]])
+            lateral = np.array([w.lateral_direction for w in wheels]) * residual[:, None]
+            slips = np.abs(residual) > SLIP_FLOOR
+            driven = [not (w.kind == "caster") for w in wheels]
+            item["drawing"].update((0.0, 0.0, 0.0), steering, twist,
+                                   slips[np.array(driven)])
+            scale = item["scale"]
+            item["velocity"].set_UVC(vel[:, 0] * scale, vel[:, 1] * scale)
+            item["slide"].set_UVC(lateral[:, 0] * scale, lateral[:, 1] * scale)
+            worst = float(np.max(np.abs(residual)))
+            if worst <= SLIP_FLOOR:
+                item["text"].set_text("rolls, no side slip")
+                item["text"].set_color("#1a7f37")
+            else:
+                item["text"].set_text(f"must slide: up to {worst:.3f} m/s")
+                item["text"].set_color(SLIDE_COLOUR)
+        return self.artists
+
+
+def constraints_panel() -> Panel:
+    """Sliders vx, vy (m/s), omega (rad/s) and "steer": the four vehicles asked for the twist.
+    """
+    controls = {
+        "vx": widgets.FloatSlider(value=0.3, min=-0.5, max=0.5, step=0.05,
+                                  description="vx (m/s)"),
+        "vy": widgets.FloatSlider(value=0.0, min=-0.5, max=0.5, step=0.05,
+                                  description="vy (m/s)"),
+        "omega": widgets.FloatSlider(value=0.0, min=-2.0, max=2.0, step=0.1,
+                                     description="ω (rad/s)"),
+        "steer": widgets.Checkbox(value=True, description="steer the steered wheels"),
+    }
+
+    def setup():
+        fig = Figure(figsize=(10, 3.2))
+        return fig, ConstraintView(fig)
+
+    def update(view, vx, vy, omega, steer):
+        return view.update(vx, vy, omega, steer)
+
+    return Panel(controls, setup, update,
+                 title="One twist asked of four vehicles: blue, the contact velocities; red, "
+                       "the sideways slip a wheel would need")
+
+
+register("unified.constraints")(constraints_panel)
+
+
+def tour_twists(frames: int = 48) -> np.ndarray:
+    """The twists of :func:`twist_tour_animation`, shape (frames, 3): a strafe whose direction
+    turns once round at 0.3 m/s (half the frames), then a left turn tightening from straight
+    to a radius of 0.2 m (a quarter), then the forward speed falling to zero at 1.5 rad/s: a
+    spin on the spot (a quarter)."""
+    if isinstance(frames, bool) or not isinstance(frames, int) or frames < 8:
+        raise ValueError(f"frames must be an integer >= 8, got {frames!r}")
+    n1 = frames // 2
+    n2 = (frames - n1) // 2
+    n3 = frames - n1 - n2
+    angle = np.linspace(0.0, 2 * math.pi, n1, endpoint=False)
+    strafe = np.column_stack([0.3 * np.cos(angle), 0.3 * np.sin(angle), np.zeros(n1)])
+    turn = np.column_stack([np.full(n2, 0.3), np.zeros(n2), np.linspace(0.0, 1.5, n2)])
+    spin = np.column_stack([np.linspace(0.3, 0.0, n3), np.zeros(n3), np.full(n3, 1.5)])
+    return np.vstack([strafe, turn, spin])
+
+
+def twist_tour_animation(frames: int = 48, figsize=(10, 3.2), dpi: int = 72
+                         ) -> SandboxAnimation:
+    """The :class:`ConstraintView` while the twist tours :func:`tour_twists`, steered wheels
+    steered; display with :func:`wheelkin.animation.show`."""
+    twists = tour_twists(frames)
+    fig = Figure(figsize=figsize, dpi=dpi)
+    view = ConstraintView(fig)
+    fig.subplots_adjust(top=0.8)
+    stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
+
+    def update(f: int):
+        vx, vy, w = twists[f]
+        view.update(vx, vy, w, True)
+        stamp.set_text(f"asked: vx = {vx:+.2f} m/s, vy = {vy:+.2f} m/s, ω = {w:+.2f} rad/s")
+        return []
+
+    update(0)
+    return SandboxAnimation(fig, update, frames=len(twists), interval=250, blit=False,
+                            repeat=True, colors=64, dynamic=[*view.artists, stamp])
+
+
+def manoeuvre_animation(runs: dict, frames: int = 30, figsize=(10, 3.4), dpi: int = 72
+                        ) -> SandboxAnimation:
+    """Sandbox runs of several vehicles side by side, one manoeuvre after another.
+
+    Parameters
+    ----------
+    runs : dict of str to dict of str to (VehicleSpec, Trajectory, goal)
+        ``{manoeuvre title: {vehicle name: (spec, trajectory, goal pose)}}``; every manoeuvre
+        has the same vehicles. ``goal`` (x, y, theta) is the pose the twist asked for, drawn
+        as a faint outline.
+    frames : int
+        Frames per manoeuvre.
+    """
+    titles = list(runs)
+    if not titles:
+        raise ValueError("runs must hold at least one manoeuvre")
+    names = list(runs[titles[0]])
+    if any(list(runs[t]) != names for t in titles):
+        raise ValueError("runs must give the same vehicles, in the same order, for every "
+                         "manoeuvre")
+    fig = Figure(figsize=figsize, dpi=dpi)
+    axes, drawings, goals, trails = [], [], [], []
+    for k, name in enumerate(names):
+        ax = fig.add_subplot(1, len(names), k + 1)
+        spec = runs[titles[0]][name][0]
+        reach = _reach(spec)
+        span = [runs[t][name][1].pose[:, :2] for t in titles]
+        span += [np.array([runs[t][name][2][:2]]) for t in titles]
+        pts = np.vstack(span)
+        lo, hi = pts.min(0) - 1.3 * reach, pts.max(0) + 1.3 * reach
+        centre, half = (lo + hi) / 2, max(hi - lo) / 2
+        ax.set_xlim(centre[0] - half, centre[0] + half)
+        ax.set_ylim(centre[1] - half, centre[1] + half)
+        ax.set_aspect("equal")
+        ax.grid(True, color="#eeeeee", linewidth=0.6)
+        ax.tick_params(labelsize=7)
+        ax.set_title(name, fontsize=10)
+        goals.append(draw_vehicle(ax, spec, (0.0, 0.0, 0.0), color="#cccccc", alpha=0.35,
+                                  zorder=1.5))
+        drawings.append(draw_vehicle(ax, spec, (0.0, 0.0, 0.0), color=PALETTE[k], zorder=3))
+        (line,) = ax.plot([], [], color=PALETTE[k], linewidth=1.2, zorder=2)
+        trails.append(line)
+        axes.append(ax)
+    stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
+    fig.subplots_adjust(left=0.05, right=0.99, bottom=0.08, top=0.86, wspace=0.25)
+    n_total = frames * len(titles)
+
+    def update(f: int):
+        title = titles[f // frames]
+        j = f % frames
+        for k, name in enumerate(names):
+            _, traj, goal = runs[title][name]
+            times = np.linspace(0.0, float(traj.t[-1]), frames)
+            i = int(np.clip(np.searchsorted(traj.t, times[j] - 1e-12), 0, len(traj) - 1))
+            drawings[k].update(traj.pose[i], traj.steering[i], traj.twist[i],
+                               traj.slipping[i])
+            goals[k].update(goal, traj.steering[-1])
+            trails[k].set_data(traj.pose[: i + 1, 0], traj.pose[: i + 1, 1])
+            t_now = float(traj.t[i])
+        stamp.set_text(f"{title}   t = {t_now:4.2f} s   (red wheel: slipping; grey: the pose "
+                       "asked for)")
+        return []
+
+    update(0)
+    dynamic = [a for d in drawings + goals for a in d.artists] + trails + [stamp]
+    return SandboxAnimation(fig, update, frames=n_total, interval=150, blit=False,
+                            repeat=True, colors=64, dynamic=dynamic)
