@@ -103,6 +103,12 @@ class MecanumDrawing:
                                  ms=6)
         self.update(pose)
 
+    @property
+    def artists(self) -> list:
+        """Every artist of the drawing (what moves when :meth:`update` is called)."""
+        out = [self._body, self._wheels, self._arrow] + [txt for txt, _ in self.labels]
+        return out + ([self._rollers] if self._rollers is not None else [])
+
     def update(self, pose, slipping=None) -> None:
         """Move every artist to ``pose`` (x m, y m, theta rad); paint slipping wheels red.
 
@@ -123,6 +129,9 @@ class MecanumDrawing:
             txt.set_position(pt @ rot.T + shift)
         if slipping is not None:
             self._wheels.set_facecolors([SLIP_COLOUR if slip else "0.25" for slip in slipping])
+            if self._rollers is not None:  # 4 rollers per wheel, FL, FR, RL, RR
+                self._rollers.set_colors([SLIP_COLOUR if slip else "0.85"
+                                          for slip in slipping for _ in range(4)])
 
 
 def draw_mecanum(ax, geometry: MecanumGeometry = EXAMPLE_GEOMETRY, pose=(0.0, 0.0, 0.0),
@@ -146,26 +155,26 @@ def simulate_go_to_point(start, goal, speed, max_omega, *, geometry=EXAMPLE_GEOM
                          max_speed=DOCUMENT_MAX_SPEED, dt=1 / 60, max_time=30.0):
     """Drive from ``start`` to ``goal`` with the sampled go-to-point law, limited each step.
 
-    Returns (t (N,), poses (N, 3), twists (N-1, 3), reasons): ``reasons`` holds the message
-    of the step that had to be scaled most (empty if the limit was never reached).
+    Returns (t (N,), poses (N, 3), twists (N-1, 3), worst): ``worst`` is the
+    :class:`~wheelkin.mecanum.SpeedLimit` of the step that had to be scaled most, or None if
+    the limit was never reached.
     """
     pose = np.asarray(start, dtype=float)
     goal = np.asarray(goal, dtype=float)
-    poses, twists, reasons = [pose], [], []
-    worst = 1.0
+    poses, twists, worst = [pose], [], None
     for _ in range(int(max_time / dt)):
         tw = go_to_point_twist(pose, goal, speed, max_omega, dt=dt)
         if not np.any(tw):
             break
         lim = limit_speed(tw, max_speed, geometry)
-        if lim.scale < worst:
-            worst, reasons = lim.scale, [lim.reason]
+        if lim.scale < (1.0 if worst is None else worst.scale):
+            worst = lim
         twists.append(np.array(lim.twist))
         pose = frames.compose(pose, frames.se2_exp(np.array(lim.twist), dt))
         poses.append(pose)
     poses_arr = np.array(poses)
     t = np.arange(len(poses_arr)) * dt
-    return t, poses_arr, np.array(twists).reshape(-1, 3), reasons
+    return t, poses_arr, np.array(twists).reshape(-1, 3), worst
 
 
 def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
@@ -175,9 +184,10 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
                   dpi: int = 72) -> SandboxAnimation:
     """A kernel-free animation of the vehicle moving through ``poses`` (N, 3).
 
-    Frames are stored with a 64-colour palette (``wheelkin.sandbox.render.SandboxAnimation``),
-    which keeps a 40-frame player near 0.25 MB. ``slipping`` (N, 4) bool: wheels drawn red
-    while they slip (e.g. ``Trajectory.slipping`` of a sandbox run).
+    The axes are drawn once and each frame only redraws the moving artists
+    (``wheelkin.sandbox.render.SandboxAnimation``); :func:`wheelkin.animation.show` stores the
+    frames as palette PNGs, so a 40-frame player stays near 0.25 MB. ``slipping`` (N, 4) bool:
+    wheels drawn red while they slip (e.g. ``Trajectory.slipping`` of a sandbox run).
     ``plan`` (M, 2): drawn dashed, labelled ``plan_label`` (e.g. the predicted path); the
     vehicle's own trail is labelled ``path_label``. ``extra_paths``: {label: (N, 2)}
     drawn progressively with the vehicle (e.g. the sandbox's path). ``texts``: one caption
@@ -214,9 +224,9 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
     if plan is not None or extra:
         ax.legend(loc="upper right", fontsize=8)
     if title:
-        ax.set_title(title, fontsize=10)
-    label = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=8, va="bottom",
-                    family="monospace")
+        fig.suptitle(title, fontsize=10)
+    label = ax.text(0.5, 1.02, "", transform=ax.transAxes, ha="center", va="bottom",
+                    fontsize=8, family="monospace")
     fig.tight_layout()
 
     def update(k):
@@ -230,7 +240,9 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
             label.set_text(texts[k])
         return []
 
-    return SandboxAnimation(fig, update, frames=frames_count, interval=100, blit=False)
+    dynamic = [*car.artists, trail, *extra_lines.values(), label]
+    return SandboxAnimation(fig, update, frames=frames_count, interval=100, blit=False,
+                            dynamic=dynamic)
 
 
 # --------------------------------------------------------------------------------------------
@@ -349,8 +361,7 @@ def waypoint_panel() -> Panel:
     def update(state, goal_x, goal_y, goal_heading_deg, speed):
         try:
             goal = (goal_x, goal_y, math.radians(goal_heading_deg))
-            t, poses, _, reasons = simulate_go_to_point((0, 0, 0), goal, speed, 1.5,
-                                                        dt=0.05)
+            t, poses, _, worst = simulate_go_to_point((0, 0, 0), goal, speed, 1.5, dt=0.05)
             state["path"].set_data(poses[:, 0], poses[:, 1])
             _fit(state["ax"], np.vstack([poses[:, :2], [[-4, -4], [4, 4]]]), g)
             state["goal"].update(goal)
@@ -358,7 +369,7 @@ def waypoint_panel() -> Panel:
                 ghost.update(poses[round((k + 1) * (len(poses) - 1) / 5)])
             state["car"].update(poses[0])
             state["ax"].set_title(f"arrives after {t[-1]:.2f} s", fontsize=10)
-            state["msg"].set_text(_wrap_reason(reasons[0]) if reasons
+            state["msg"].set_text(_wrap_reason(worst.reason) if worst is not None
                                   else "within the 15 ft/s limit all the way")
         except Exception as exc:
             state["msg"].set_text(f"cannot show this: {exc}")
