@@ -247,6 +247,14 @@ def draw_vehicle(ax: Axes, spec: VehicleSpec, pose, steering=None, *, show_icr: 
     drawing = VehicleDrawing(ax, spec, color=color, show_icr=bool(show_icr), labels=labels,
                              alpha=alpha, zorder=zorder)
     drawing.update(pose, steering, twist, slipping)
+    # Let the axes' autoscaling see the drawing (its artists were created empty).
+    points = [drawing.body.get_xy()] + [patch.get_xy() for patch in drawing.wheels]
+    points += [np.array(text.get_position())[None] for text in drawing.labels]
+    icr = drawing.icr.get_data()
+    if len(icr[0]):
+        points.append(np.column_stack(icr))
+    ax.update_datalim(np.concatenate(points))
+    ax.autoscale_view()
     return drawing
 
 
