@@ -74,7 +74,7 @@ def to_html(
     fps: float | None = None,
     default_mode: str = "loop",
     max_bytes: int = MAX_BYTES,
-    colors: int | None = 128,
+    colors: int | None = 256,
 ) -> str:
     """Render ``anim`` to self-contained HTML with a stable id and alt text.
 
