@@ -342,6 +342,28 @@ class _Base:
              w.roller_angle, where.get(w.name, -1),
              (float(cap) * (1.0 + CAP_TOLERANCE)) ** 2)
             for w, cap in zip(spec.driven_wheels, self.caps, strict=True))
+        self.C_flat = tuple(v for row in self.C_list for v in row)
+        # An unsteered wheel's stick data does not change: computed once here.
+        self.fixed = tuple(None if entry[6] >= 0 else _wheel_data(entry, 0.0, self.C_flat)
+                           for entry in self.table)
+
+
+def _wheel_data(entry: tuple, steer: float, C: tuple) -> tuple:
+    """A driven wheel's column of P = J^+ B and its stick-check data at a steering angle."""
+    px, py, heading, radius, is_mecanum, gamma, _slot, cap2 = entry
+    c0, c1, c2, c3, c4, c5, c6, c7, c8 = C
+    h = heading + steer
+    ex, ey = math.cos(h), math.sin(h)
+    if is_mecanum:
+        a = h + math.pi / 2 + gamma
+        dx, dy = math.cos(a), math.sin(a)
+        coef = radius * (dx * ex + dy * ey)
+    else:
+        dx, dy, coef = ex, ey, radius
+    r2 = px * dy - py * dx
+    col = (coef * (c0 * dx + c1 * dy + c2 * r2), coef * (c3 * dx + c4 * dy + c5 * r2),
+           coef * (c6 * dx + c7 * dy + c8 * r2))
+    return col, (px, py, dx, dy, coef, cap2, not is_mecanum)
 
 
 class ContactModel:
@@ -368,34 +390,34 @@ class ContactModel:
         if base is None:
             base = _Base(spec, dt)
         self.base, self.spec, self.dt = base, spec, dt
-        self.steering = tuple(float(a) for a in steering)
+        self.steering = tuple(steering)
         self.n, self.k = base.n, base.k
         self.m = self.n * self.k
         self.mass_diag, self.caps = base.mass_diag, base.caps
         self.stick_flags, self.stick_speeds = base.stick_flags, base.stick_speeds
-        (c0, c1, c2), (c3, c4, c5), (c6, c7, c8) = base.C_list
-        steer = self.steering
-        fast, cols = [], []
-        for px, py, heading, radius, is_mecanum, gamma, slot, cap2 in base.table:
-            h = heading + steer[slot] if slot >= 0 else heading
-            ex, ey = math.cos(h), math.sin(h)
-            if is_mecanum:
-                a = h + math.pi / 2 + gamma
-                dx, dy = math.cos(a), math.sin(a)
-                coef = radius * (dx * ex + dy * ey)
-            else:
-                dx, dy, coef = ex, ey, radius
-            r2 = px * dy - py * dx
-            cols.append((coef * (c0 * dx + c1 * dy + c2 * r2), coef * (c3 * dx + c4 * dy + c5 * r2),
-                         coef * (c6 * dx + c7 * dy + c8 * r2)))
-            fast.append((px, py, dx, dy, coef, cap2, not is_mecanum))
-        self._cols = tuple(cols)
-        self._fast = tuple(fast)
-        self._C = (c0, c1, c2, c3, c4, c5, c6, c7, c8)
+        steer, C = self.steering, base.C_flat
+        data = [fixed if fixed is not None else _wheel_data(entry, steer[entry[6]], C)
+                for entry, fixed in zip(base.table, base.fixed, strict=True)]
+        self._cols = tuple(d[0] for d in data)
+        self._fast = tuple(d[1] for d in data)
+        self._C = C
         self._M = (spec.mass, spec.mass, spec.inertia)
+        self._steered = tuple((j, entry) for j, entry in enumerate(base.table) if entry[6] >= 0)
         self._np_ready = False
         self._block_data = None
         self._partitions: dict = {}
+
+    def retarget(self, steering: tuple) -> None:
+        """Change the steering in place: only the steered wheels' data are recomputed, and the
+        slip path's matrices are dropped (they are rebuilt when next needed)."""
+        self.steering = steering
+        cols, fast, C = list(self._cols), list(self._fast), self._C
+        for j, entry in self._steered:
+            cols[j], fast[j] = _wheel_data(entry, steering[entry[6]], C)
+        self._cols, self._fast = tuple(cols), tuple(fast)
+        self._np_ready = False
+        self._block_data = None
+        self._partitions = {}
 
     def _numpy(self) -> None:
         """Build the matrices of the slip path."""

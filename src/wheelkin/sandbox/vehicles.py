@@ -588,7 +588,7 @@ def ideal_commands(spec: VehicleSpec, twist, steering=None) -> tuple[np.ndarray,
         current = (0.0,) * k
     else:
         current = tuple(V.shaped("steering", steering, (k,)).reshape(k).tolist())
-    rates, angles = _ideal(command_table(spec), vx, vy, w, current)
+    rates, angles, _ = _ideal(command_table(spec), vx, vy, w, current)
     return np.array(rates), np.array(angles)
 
 
@@ -610,10 +610,12 @@ def command_table(spec: VehicleSpec) -> tuple:
 
 
 def _ideal(table: tuple, vx: float, vy: float, w: float, current: tuple
-           ) -> tuple[list, tuple]:
-    """:func:`ideal_commands` on plain floats (no validation)."""
+           ) -> tuple[list, tuple, bool]:
+    """:func:`ideal_commands` on plain floats (no validation), and whether the wheels can all
+    roll at that twist (no fixed wheel's contact moves sideways)."""
     rates = []
     angles = list(current)
+    rolls = True
     for kind, px, py, h, ex, ey, ux, uy, r, slot in table:
         cx, cy = vx - w * py, vy + w * px
         if kind == "steered":
@@ -625,9 +627,11 @@ def _ideal(table: tuple, vx: float, vy: float, w: float, current: tuple
             rates.append(sign * speed / r)
         elif kind == "fixed":
             rates.append((ex * cx + ey * cy) / r)
+            if abs(ex * cy - ey * cx) > 1e-12:
+                rolls = False
         else:  # mecanum
             rates.append((ux * cx + uy * cy) / (r * (ux * ex + uy * ey)))
-    return rates, tuple(angles)
+    return rates, tuple(angles), rolls
 
 
 #: The firmware robot (Radon Ulzer, a Zumo-class differential drive): track 0.085 m, wheel

@@ -138,9 +138,7 @@ class Robot:
         self._slip_speed = (0.0,) * self._n
         self._distance = 0.0
         self._touching = 0
-        self._models: dict = {}
-        self._base = _Base(spec, self._dt)
-        self._model = self._get_model(self._steer)
+        self._model = ContactModel(spec, self._steer, self._dt, _Base(spec, self._dt))
         self._warm = _Warm()
         tau = spec.motor_time_constant
         if tau > 0:
@@ -190,7 +188,8 @@ class Robot:
     def _steer_to(self, steer: tuple) -> None:
         if steer != self._steer:
             self._steer = steer
-            self._model = self._get_model(steer)
+            self._model.retarget(steer)
+            self._warm.consistent_key = None
 
     def command_twist(self, vx: float, vy: float, omega: float) -> None:
         """Command the ideal wheel rates (and steering) of a body twist (m/s, m/s, rad/s).
@@ -198,19 +197,21 @@ class Robot:
         See :func:`~wheelkin.sandbox.vehicles.ideal_commands`: what the wheels cannot follow
         (a skid steer's or a differential drive's sideways velocity) is left to friction.
         """
-        rates, steer = _ideal(self._table, V.finite("vx", vx), V.finite("vy", vy),
-                              V.finite("omega", omega), self._steer)
+        try:
+            valid = not isinstance(vx, bool) and not isinstance(vy, bool) \
+                and not isinstance(omega, bool)
+            vx, vy, omega = float(vx), float(vy), float(omega)
+            valid = valid and math.isfinite(vx + vy + omega)
+        except (TypeError, ValueError):
+            valid = False
+        if not valid:
+            V.finite("vx", vx), V.finite("vy", vy), V.finite("omega", omega)  # raise, naming it
+        rates, steer, rolls = _ideal(self._table, vx, vy, omega, self._steer)
         self._steer_to(steer)
         self._cmd = rates
-
-    def _get_model(self, steer: tuple) -> ContactModel:
-        model = self._models.get(steer)
-        if model is None:
-            if len(self._models) >= 64:
-                self._models.clear()
-            model = ContactModel(self.spec, steer, self._dt, self._base)
-            self._models[steer] = model
-        return model
+        # The ideal rates of a twist all the wheels can roll at need no consistency check.
+        warm = self._warm
+        warm.consistent_key, warm.consistent_rates, warm.consistent = self._model, rates, rolls
 
     # ------------------------------------------------------------------ state
     @property
