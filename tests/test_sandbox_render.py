@@ -140,3 +140,21 @@ def test_animation_inputs_are_checked(two_runs):
         animate(two_runs[0], RADON_ULZER, extra_paths={"bad": [1, 2, 3]})
     with pytest.raises(ValueError, match="colors"):
         animate(two_runs[0], RADON_ULZER, colors=1000)
+
+
+def test_slip_panel_redraws_at_every_slider_extreme_without_raising():
+    from wheelkin.widgets import all_panels, slider_values
+
+    panel = all_panels()["sandbox.slip"]()
+    try:
+        for mu in slider_values(panel.controls["mu"], 3):
+            for omega in slider_values(panel.controls["omega"], 3):
+                panel.redraw(mu=mu, omega=omega)
+        view = panel.state
+        # On a good floor a gentle turn stays on the model; on ice a sharp one does not.
+        panel.redraw(mu=1.0, omega=1.0)
+        assert "off the model by 0.0 cm" in view.title.get_text()
+        panel.redraw(mu=0.05, omega=6.0)
+        assert len(view.slips.get_data()[0]) > 0
+    finally:
+        panel.close()

@@ -1,0 +1,112 @@
+"""The sandbox page's live panel (notebooks/02_sandbox): how much grip a turn needs.
+
+Panel ``sandbox.slip``: the Radon Ulzer is commanded at 0.4 m/s and a yaw rate omega (slider)
+on a floor of friction coefficient mu (slider), from rest, with the command ramped in over
+0.3 s. The figure shows the kinematic circle of the command (dashed), the sandbox's path for
+2 s (red where the wheels slip) and the robot at the end. The turn needs a centripetal
+acceleration v omega; the driven wheels can give about 0.8 mu g (the caster carries the
+rest), so the robot holds its circle while v omega < 0.8 mu g and slides off beyond.
+"""
+
+from __future__ import annotations
+
+import math
+
+import ipywidgets as widgets
+import numpy as np
+from matplotlib.figure import Figure
+
+from wheelkin.sandbox import RADON_ULZER, World
+from wheelkin.sandbox.render import draw_vehicle
+from wheelkin.sandbox.vehicles import GRAVITY
+from wheelkin.widgets import Panel, register
+
+__all__ = ["SlipView", "slip_panel"]
+
+SPEED = 0.4  # m/s
+DURATION = 2.0  # s
+RAMP = 0.3  # s
+DT = 1 / 80  # a coarser step keeps a redraw within the slider budget
+
+
+class SlipView:
+    """The kinematic circle, the sandbox path and the robot; :meth:`update` redraws in place."""
+
+    def __init__(self, fig: Figure) -> None:
+        self.fig = fig
+        ax = self.ax = fig.add_subplot()
+        fig.subplots_adjust(left=0.12, right=0.97, bottom=0.13, top=0.88)
+        ax.set_aspect("equal")
+        ax.set_xlim(-0.9, 1.6)
+        ax.set_ylim(-0.9, 1.0)
+        ax.grid(True, color="#dddddd", lw=0.6)
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        (self.circle,) = ax.plot([], [], "k--", lw=1.0, label="kinematic model")
+        (self.path,) = ax.plot([], [], color="#1f77b4", lw=1.5, label="sandbox")
+        (self.slips,) = ax.plot([], [], ".", color="#d62728", ms=3, label="wheels slipping")
+        self.robot = draw_vehicle(ax, RADON_ULZER, (0.0, 0.0, 0.0))
+        ax.legend(loc="lower right", fontsize=8)
+        self.title = ax.set_title("", fontsize=9)
+        self.message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center",
+                               va="center", color="#d62728")
+
+    def update(self, mu: float, omega: float) -> None:
+        try:
+            spec = RADON_ULZER.replace(mu=float(mu))
+            omega = float(omega)
+        except ValueError as exc:  # a value the model rejects: say so, do not raise
+            self.message.set_text(str(exc))
+            return
+        self.message.set_text("")
+        world = World(dt=DT)
+        robot = world.add(spec)
+
+        def ramp(t, _world):
+            s = min(t / RAMP, 1.0)
+            robot.command_twist(SPEED * s, 0.0, omega * s)
+
+        traj = world.run(DURATION, ramp)
+        # Kinematic model of the same (ramped) command, integrated exactly per step.
+        t = traj.t[:-1] + 0.5 * DT
+        s = np.minimum(t / RAMP, 1.0)
+        v, w = SPEED * s, omega * s
+        theta = np.concatenate([[0.0], np.cumsum(w * DT)])
+        half = 0.5 * w * DT
+        chord = v * DT * np.sinc(half / np.pi)
+        mid = theta[:-1] + half
+        ideal = np.column_stack([np.concatenate([[0.0], np.cumsum(chord * np.cos(mid))]),
+                                 np.concatenate([[0.0], np.cumsum(chord * np.sin(mid))])])
+        self.circle.set_data(ideal[:, 0], ideal[:, 1])
+        self.path.set_data(traj.pose[:, 0], traj.pose[:, 1])
+        slipping = traj.slipping.any(axis=1)
+        self.slips.set_data(traj.pose[slipping, 0], traj.pose[slipping, 1])
+        self.robot.update(traj.pose[-1], twist=traj.twist[-1], slipping=traj.slipping[-1])
+        need = SPEED * abs(omega)
+        grip = 0.8 * spec.mu * GRAVITY
+        off = math.dist(traj.pose[-1, :2], ideal[-1])
+        self.title.set_text(f"needs v·ω = {need:.1f} m/s², wheels grip ≈ {grip:.1f} m/s²; "
+                            f"off the model by {off * 100:.1f} cm after {DURATION:g} s")
+
+
+def slip_panel() -> Panel:
+    """Sliders for the friction coefficient and the commanded yaw rate."""
+
+    def setup():
+        fig = Figure(figsize=(6.0, 4.6), dpi=72)
+        return fig, SlipView(fig)
+
+    def update(view: SlipView, mu: float, omega: float) -> None:
+        view.update(mu, omega)
+
+    controls = {
+        "mu": widgets.FloatSlider(value=0.8, min=0.05, max=1.0, step=0.05, description="μ",
+                                  continuous_update=False),
+        "omega": widgets.FloatSlider(value=2.0, min=0.0, max=6.0, step=0.25,
+                                     description="ω (rad/s)", continuous_update=False),
+    }
+    return Panel(controls, setup, update,
+                 title="The Radon Ulzer turning at 0.4 m/s: the grip a turn needs")
+
+
+register("sandbox.slip")(slip_panel)
