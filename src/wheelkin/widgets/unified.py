@@ -76,8 +76,8 @@ class ConstraintView:
             ax.set_yticks([])
             wheels = unified.from_sandbox(spec)
             mob = unified.mobility(wheels)
-            ax.set_title(f"{name}\nδm = {mob.degree_of_mobility}, "
-                         f"δs = {mob.degree_of_steerability}", fontsize=9)
+            ax.set_title(f"{name}\nrank C1 = {mob.rank_sliding}: δm = {mob.degree_of_mobility}"
+                         f", δs = {mob.degree_of_steerability}", fontsize=9)
             drawing = draw_vehicle(ax, spec, (0.0, 0.0, 0.0), show_icr=True,
                                    twist=(0.0, 0.0, 0.0), color=PALETTE[k])
             points = np.array([w.position for w in wheels])
