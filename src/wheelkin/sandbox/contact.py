@@ -50,9 +50,9 @@ and sideways at once. This matters for a skid steer: turning, its wheels slide s
 sideways friction uses up their grip, the forward forces that would turn the body fall short,
 and it turns *slower* than the ideal differential-drive model with its geometric track (a box
 would let it turn at the ideal rate). For the lab robot the yaw rate is about 0.59 of the ideal,
-whatever mu or the command: an effective track 1.7 times the geometric one. A skid steer cannot satisfy its lateral constraints while
-turning at all: it always slips in a turn. That is physics, and the waypoint chapter relies on
-it.
+whatever mu or the command: an effective track 1.7 times the geometric one. A skid steer cannot
+satisfy its lateral constraints while turning at all: it always slips in a turn. That is
+physics, and the waypoint chapter relies on it.
 
 Normal loads are static, N_i = load_fraction_i * m * g; a caster carries its share and exerts
 no force. Rolling resistance, motor torque limits and load transfer are not modelled: a wheel
