@@ -203,8 +203,10 @@ def test_forward_after_inverse_is_the_identity_on_admissible_twists(twist):
     np.testing.assert_allclose(body_twist(dd, wheel_rates(dd, (vx, 0, w))), (vx, 0, w),
                                atol=1e-9)
     swerve = steer_for_twist(_swerve(), twist)
+    # Near omega = 0 the steering angles come from an ICR millions of metres away: the round
+    # trip is then conditioned ~1e7 times worse, so allow a few nm/s (twist magnitudes <= ~1).
     np.testing.assert_allclose(body_twist(swerve, wheel_rates(swerve, twist)), twist,
-                               atol=1e-9)
+                               atol=1e-8)
 
 
 def test_skid_steer_odometry_is_the_diffdrive_chapters_forward_kinematics():
