@@ -84,6 +84,13 @@ class TwistView:
                                va="center", color="#b35900", fontsize=10, zorder=10,
                                bbox={"fc": "white", "ec": "#b35900"})
         self.message.set_visible(False)
+        # Everything update() moves, in drawing order: a panel redraws only these over a
+        # cached picture of the rest (the limits and ticks above never change).
+        self.artists = sorted([self.path, *self.ghosts, self.body, self.nose, self.axes_x,
+                               self.axes_y, *self.radii, self.arrows, self.icr,
+                               self.icr_label, self.info, self.message,
+                               *ax.spines.values()],  # the frame: drawn over the path
+                              key=lambda artist: artist.get_zorder())
 
     def _outline(self, pose: frames.Pose, points: np.ndarray) -> np.ndarray:
         return frames.transform_points(pose, points)
@@ -113,14 +120,16 @@ class TwistView:
             line.set_data([corner[0], world_icr[0]], [corner[1], world_icr[1]])
         self.icr.set_data([world_icr[0]], [world_icr[1]])
 
-    def update(self, vx: float, vy: float, omega: float) -> None:
-        """Show the body at the start pose under the twist ``(vx, vy, omega)`` (SI)."""
+    def update(self, vx: float, vy: float, omega: float) -> list:
+        """Show the body at the start pose under the twist ``(vx, vy, omega)`` (SI).
+
+        Returns :attr:`artists`, the artists it may change (for a blitting panel)."""
         try:
             twist = frames.Twist(vx, vy, omega)
         except ValueError as exc:  # never raise in a panel: say what is wrong instead
             self.message.set_text(str(exc)[:80])
             self.message.set_visible(True)
-            return
+            return self.artists
         self.message.set_visible(False)
         n = 80
         poses = frames.integrate_twist(np.tile(twist.as_array(), (n, 1)), HORIZON / n,
@@ -155,6 +164,7 @@ class TwistView:
         else:
             lines.append("rover:   no radius (vy≠0 or spin)")
         self.info.set_text("\n".join(lines))
+        return self.artists
 
 
 def _figure(figsize=(5.0, 5.0), dpi=72):
@@ -185,7 +195,7 @@ def twist_icr_panel() -> Panel:
         return fig, TwistView(fig.add_subplot(1, 1, 1))
 
     def update(view, vx, vy, omega):
-        view.update(vx, vy, omega)
+        return view.update(vx, vy, omega)  # the moving artists: the panel blits them
 
     return Panel(controls, setup, update,
                  title="A constant twist: the path, the ICR and the corner velocities")

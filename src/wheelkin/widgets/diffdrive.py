@@ -17,6 +17,7 @@ from __future__ import annotations
 import ipywidgets as widgets
 import numpy as np
 from matplotlib.animation import FuncAnimation
+from matplotlib.artist import Artist
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrow, Rectangle
 
@@ -33,6 +34,9 @@ _LEFT_COLOUR, _RIGHT_COLOUR = "#1f77b4", "#d62728"
 _XLIM = (-140.0, 140.0)            # page x: the robot's right (mm)
 _YLIM = (-110.0, 150.0)            # page y: forward (mm)
 _ROWS = ("correct", "as printed", "int32")
+#: Tops of the speedometer's speed axis (mm/s): the smallest that holds 2.2 x the true speed.
+_SPEED_TOPS = (20, 25, 30, 40, 50, 60, 80, 100, 120, 150, 200, 250, 300, 400, 500, 600, 800,
+               1000, 1200)
 
 
 class DiffDriveView:
@@ -70,7 +74,6 @@ class DiffDriveView:
         ax.plot([0], [0], marker="+", color="k", ms=8, zorder=5)
         ax.text(-half, -26, "L", ha="center", va="top", fontsize=8)
         ax.text(half, -26, "R", ha="center", va="top", fontsize=8)
-        self.arrows: list[FancyArrow] = []
         self.icr = ax.plot([], [], marker="o", color="k", ms=5, ls="none", zorder=6)[0]
         self.icr_text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=7,
                                 va="bottom")
@@ -79,6 +82,10 @@ class DiffDriveView:
         ax.set_title("", fontsize=9)
         self.message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center",
                                va="center", color="#b35900", fontsize=9, zorder=10)
+        # The wheel-speed arrows: made once, moved by update() (after the ICR marker, so
+        # they are drawn over it).
+        self.arrows = [self._arrow(-half, 0.0, _LEFT_COLOUR),
+                       self._arrow(half, 0.0, _RIGHT_COLOUR)]
         # Bars: three computations x (left, right).
         y = np.arange(len(_ROWS))
         self.left_bars = bx.barh(y + 0.18, np.zeros(3), height=0.34, color=_LEFT_COLOUR,
@@ -88,13 +95,21 @@ class DiffDriveView:
         bx.set_yticks(y, _ROWS, fontsize=8)
         bx.invert_yaxis()
         bx.set_xlim(-3000, 3000)
-        bx.axvline(0, color="k", lw=0.6)
+        self.zero_line = bx.axvline(0, color="k", lw=0.6)  # drawn over the bars
         bx.set_xlabel("wheel speed (steps/s)")
         bx.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=7,
                   frameon=False)
         self.bar_text = [bx.text(-2900, i + 0.42, "", fontsize=7, va="center")
                          for i in range(3)]
         self.title = fig.suptitle("", fontsize=9, y=0.99)
+        # Everything update() moves, in drawing order: a panel redraws only these over a
+        # cached picture of the rest (the limits never change); and the frame and zero line
+        # of the bar chart, drawn over the bars.
+        self.artists = sorted([self.icr, self.icr_text, self.printed_marks, self.message,
+                               *self.arrows, *self.left_bars, *self.right_bars,
+                               *bx.spines.values(), self.zero_line, *self.bar_text,
+                               self.title],
+                              key=lambda artist: artist.get_zorder())
 
     def _arrow(self, x: float, speed: float, colour: str) -> FancyArrow:
         length = speed * ARROW_MM_PER_STEP_PER_S
@@ -103,24 +118,29 @@ class DiffDriveView:
                                             length_includes_head=True, color=colour,
                                             zorder=6))
 
-    def update(self, v_steps_per_s: int, omega_mrad_per_s: int) -> None:
-        """Show the wheel speeds for a set point (v in steps/s, omega in mrad/s)."""
+    def _move_arrow(self, arrow: FancyArrow, speed: float) -> None:
+        length = speed * ARROW_MM_PER_STEP_PER_S
+        arrow.set_data(dy=length, head_length=min(10.0, abs(length)) or 0.1)
+
+    def update(self, v_steps_per_s: int, omega_mrad_per_s: int) -> list:
+        """Show the wheel speeds for a set point (v in steps/s, omega in mrad/s).
+
+        Returns :attr:`artists`, the artists it may change (for a blitting panel)."""
         try:
             self._update(int(v_steps_per_s), int(omega_mrad_per_s))
             self.message.set_text("")
         except ValueError as exc:  # a value the model rejects is shown, never raised
             self.message.set_text(str(exc))
+        return self.artists
 
     def _update(self, v: int, omega: int) -> None:
         left, right = dd.wheel_speeds_steps(v, omega, self.base, self.enc)
         p_left, p_right = dd.wheel_speeds_steps_as_printed(v, omega, self.base, self.enc)
         i_left, i_right, overflow = dd.wheel_speeds_steps_int32(v, omega, self.base, self.enc,
                                                                 method="firmware")
-        for arrow in self.arrows:
-            arrow.remove()
         half = self.base / 2
-        self.arrows = [self._arrow(-half, left, _LEFT_COLOUR),
-                       self._arrow(half, right, _RIGHT_COLOUR)]
+        self._move_arrow(self.arrows[0], left)
+        self._move_arrow(self.arrows[1], right)
         self.printed_marks.set_data([-half, half], [p_left * ARROW_MM_PER_STEP_PER_S,
                                                     p_right * ARROW_MM_PER_STEP_PER_S])
         # ICR on the axle line, R = v / omega (mm), positive to the left (page -x).
@@ -155,8 +175,8 @@ def wheel_speeds_panel() -> Panel:
         fig = Figure(figsize=(7.5, 3.4), dpi=72)  # not pyplot's: never shown by accident
         return fig, DiffDriveView(fig)
 
-    def update(view: DiffDriveView, v_steps_per_s: int, omega_mrad_per_s: int) -> None:
-        view.update(v_steps_per_s, omega_mrad_per_s)
+    def update(view: DiffDriveView, v_steps_per_s: int, omega_mrad_per_s: int) -> list:
+        return view.update(v_steps_per_s, omega_mrad_per_s)  # the panel blits these
 
     controls = {
         "v_steps_per_s": widgets.IntSlider(value=1000, min=-2000, max=2000, step=50,
@@ -204,10 +224,29 @@ class SpeedometerView:
         ax.set_xlabel("time (ms)")
         ax.set_ylabel("speed (mm/s)")
         ax.grid(True, lw=0.3, alpha=0.5)
-        ax.legend(loc="upper right", fontsize=7)
+        legend = ax.legend(loc="upper right", fontsize=7)
         self.text = ax.text(0.02, 0.97, "", transform=ax.transAxes, fontsize=7, va="top")
+        # The speed axis takes a few fixed tops (not 2.2 x every speed), so that a panel can
+        # redraw only the lines and the text over a cached picture of the axes while the top
+        # holds; ``view`` (an invisible marker) changes whenever the top does, so that the
+        # panel then renders the new axes once.
+        self._views = (Artist(), Artist())
+        for marker in self._views:
+            marker.set_visible(False)
+        self.view = self._views[0]
+        self._top: float | None = None
+        # The frame and the legend do not change but are drawn over the lines.
+        self.lines = sorted([self.true_line, self.fixed_line, self.min_line,
+                             *ax.spines.values(), self.text, legend],
+                            key=lambda artist: artist.get_zorder())
 
-    def update(self, speed_mm_per_s: float, window_ms: float, min_steps: int) -> None:
+    @property
+    def artists(self) -> list:
+        """What update() may change, in drawing order (the marker of the view last)."""
+        return [*self.lines, self.view]
+
+    def update(self, speed_mm_per_s: float, window_ms: float, min_steps: int) -> list:
+        """Show the readings; returns :attr:`artists` (for a blitting panel)."""
         try:
             speed = float(speed_mm_per_s) * 1e-3
             counts = np.floor(speed * self.enc * self.t + 0.5)
@@ -216,17 +255,22 @@ class SpeedometerView:
                                            min_steps=int(min_steps))
         except ValueError as exc:
             self.text.set_text(str(exc))
-            return
+            return self.artists
         ms = self.t * 1000
         to_mm = 1000.0 / self.enc
         self.true_line.set_data(ms, np.full_like(ms, speed * 1000))
         self.fixed_line.set_data(ms, fixed * to_mm)
         self.min_line.set_data(ms, waiting * to_mm)
-        top = max(speed * 1000 * 2.2, 20.0)
-        self.ax.set_ylim(-0.05 * top, top)
+        need = max(speed * 1000 * 2.2, 20.0)
+        top = next((t for t in _SPEED_TOPS if t >= need), need)
+        if top != self._top:
+            self._top = top
+            self.ax.set_ylim(-0.05 * top, top)
+            self.view = self._views[1] if self.view is self._views[0] else self._views[0]
         resolution = dd.speed_resolution(window_ms * 1e-3, self.enc) * 1000
         self.text.set_text(f"fixed {window_ms:.0f} ms window: resolution {resolution:.1f} mm/s"
                            f"\nwaiting for {int(min_steps)} steps")
+        return self.artists
 
 
 def speedometer_panel() -> Panel:
@@ -237,8 +281,8 @@ def speedometer_panel() -> Panel:
         return fig, SpeedometerView(fig)
 
     def update(view: SpeedometerView, speed_mm_per_s: float, window_ms: float,
-               min_steps: int) -> None:
-        view.update(speed_mm_per_s, window_ms, min_steps)
+               min_steps: int) -> list:
+        return view.update(speed_mm_per_s, window_ms, min_steps)  # the panel blits these
 
     controls = {
         "speed_mm_per_s": widgets.FloatSlider(value=50.0, min=5.0, max=500.0, step=5.0,

@@ -18,6 +18,7 @@ import math
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator
@@ -256,16 +257,84 @@ def _slider(description, lo, hi, step, value, fmt=".2f"):
                                style={"description_width": "initial"})
 
 
-def _fit(ax, points, geometry, minimum=2.0):
-    """Square view around ``points`` (N, 2) with room for the vehicle, in whole metres."""
-    pts = np.asarray(points, dtype=float)[:, :2]
-    pad = 1.5 * (geometry.half_wheelbase + geometry.wheel_radius)
-    lo, hi = pts.min(axis=0) - pad, pts.max(axis=0) + pad
-    centre = (lo + hi) / 2
-    half = max(float(np.max(hi - lo)) / 2, minimum)
-    half = math.ceil(half)
-    ax.set_xlim(centre[0] - half, centre[0] + half)
-    ax.set_ylim(centre[1] - half, centre[1] + half)
+class _Views:
+    """Square views of a panel's axes, chosen from a few sizes.
+
+    The smallest view that holds ``points`` with room for the vehicle: half-size from
+    ``halves`` (m), centre on a grid of ``1 / grid`` of that (``grid=None``: on the origin,
+    where the vehicle starts). Neighbouring slider values usually get the same view, so the
+    axes, ticks and grid stay as they are and the panel redraws only the moving artists over
+    a cached picture of the rest (blitting). :meth:`fit` returns a marker (an invisible
+    artist) that changes whenever the view does: the panel's update puts it in the list of
+    artists it returns, so that the panel notices the change and renders the new axes once
+    before blitting again.
+    """
+
+    def __init__(self, ax, geometry: MecanumGeometry,
+                 halves: tuple = (2, 3, 4, 5, 6, 8, 10, 12), grid: int | None = 4) -> None:
+        self.ax = ax
+        self.halves = halves
+        self.grid = grid
+        self.pad = 1.5 * (geometry.half_wheelbase + geometry.wheel_radius)
+        self._markers = (Artist(), Artist())
+        for marker in self._markers:
+            marker.set_visible(False)
+        self._which = 0
+        self._view: tuple | None = None
+
+    @property
+    def marker(self) -> Artist:
+        """The current view's marker."""
+        return self._markers[self._which]
+
+    def fit(self, points) -> Artist:
+        """Show ``points`` (N, >= 2; x and y in m) in the smallest view that holds them."""
+        pts = np.asarray(points, dtype=float)[:, :2]
+        lo, hi = pts.min(axis=0) - self.pad, pts.max(axis=0) + self.pad
+        middle = (lo + hi) / 2
+        for half in self.halves:
+            if self.grid is None:
+                centre = np.zeros(2)
+            else:
+                centre = np.round(middle / (half / self.grid)) * (half / self.grid)
+            if np.all(centre - half <= lo) and np.all(hi <= centre + half):
+                break
+        else:  # larger than every view: fit it exactly
+            half, centre = math.ceil(float(np.max(hi - lo)) / 2), middle
+        view = (float(centre[0]) + 0.0, float(centre[1]) + 0.0, float(half))
+        if view != self._view:
+            self._view = view
+            self._which = 1 - self._which
+            self.ax.set_xlim(view[0] - half, view[0] + half)
+            self.ax.set_ylim(view[1] - half, view[1] + half)
+        return self.marker
+
+
+def _draw_order(artists: list) -> list:
+    """``artists`` (listed in the order they were created) in the order a full draw draws
+    them: by zorder, creation order among equals (as matplotlib's own sort). A panel's list
+    includes the axes' frame (spines): it does not move, but is drawn over the paths."""
+    return sorted(artists, key=lambda artist: artist.get_zorder())
+
+
+class _Memo:
+    """``function`` with its most recent results remembered, by arguments (a student drags a
+    slider back and forth over the same values; a run is computed once)."""
+
+    def __init__(self, function, size: int = 128) -> None:
+        self.function = function
+        self.size = size
+        self._results: dict = {}
+
+    def __call__(self, *args, **kwargs):
+        key = (args, tuple(sorted(kwargs.items())))
+        if key in self._results:
+            self._results[key] = self._results.pop(key)  # most recently used last
+        else:
+            self._results[key] = self.function(*args, **kwargs)
+            if len(self._results) > self.size:
+                del self._results[next(iter(self._results))]
+        return self._results[key]
 
 
 def _message_axes(fig):
@@ -293,8 +362,12 @@ def wheel_rates_panel() -> Panel:
         start = draw_mecanum(ax, g, (0, 0, 0), color="0.5", alpha=0.5, rollers=False)
         (path,) = ax.plot([], [], "C0-", lw=1.5)
         end = draw_mecanum(ax, g, (0, 0, 0))
-        return fig, {"path": path, "end": end, "start": start, "msg": _message_axes(fig),
-                     "ax": ax}
+        msg = _message_axes(fig)
+        # Views about the start: the 2 s path reaches at most 9.1 m (15 ft/s).
+        return fig, {"path": path, "end": end, "start": start, "msg": msg, "ax": ax,
+                     "views": _Views(ax, g, halves=(3, 6, 10), grid=None),
+                     "artists": _draw_order([*start.artists, path, *end.artists, msg,
+                                             *ax.spines.values()])}
 
     def update(state, FL, FR, RL, RR):
         try:
@@ -303,7 +376,7 @@ def wheel_rates_panel() -> Panel:
             lim = limit_speed(twist, DOCUMENT_MAX_SPEED, g)
             path = predicted_path(lim.twist, duration)
             state["path"].set_data(path[:, 0], path[:, 1])
-            _fit(state["ax"], path, g)
+            state["views"].fit(path)
             state["end"].update(path[-1])
             c = float(fighting_component(rates))
             vx, vy, w = twist
@@ -314,6 +387,7 @@ def wheel_rates_panel() -> Panel:
             state["msg"].set_text("\n".join(lines))
         except Exception as exc:  # a panel must never raise
             state["msg"].set_text(f"cannot show this: {exc}")
+        return [*state["artists"], state["views"].marker]  # the panel blits these
 
     return Panel(controls, setup, update, title="Drive by four wheel speeds (FL, FR, RL, RR)")
 
@@ -355,15 +429,19 @@ def waypoint_panel() -> Panel:
         (path,) = ax.plot([], [], "C0-", lw=1.5)
         goal = draw_mecanum(ax, g, (0, 0, 0), color="C3", alpha=0.4, rollers=False)
         car = draw_mecanum(ax, g, (0, 0, 0))
-        return fig, {"path": path, "ghosts": ghosts, "goal": goal, "car": car,
-                     "msg": _message_axes(fig), "ax": ax}
+        msg = _message_axes(fig)
+        moving = [a for ghost in ghosts for a in ghost.artists]
+        return fig, {"path": path, "ghosts": ghosts, "goal": goal, "car": car, "msg": msg,
+                     "ax": ax, "views": _Views(ax, g), "runs": _Memo(simulate_go_to_point),
+                     "artists": _draw_order([*moving, path, *goal.artists, *car.artists,
+                                             *ax.spines.values(), ax.title, msg])}
 
     def update(state, goal_x, goal_y, goal_heading_deg, speed):
         try:
             goal = (goal_x, goal_y, math.radians(goal_heading_deg))
-            t, poses, _, worst = simulate_go_to_point((0, 0, 0), goal, speed, 1.5, dt=0.05)
+            t, poses, _, worst = state["runs"]((0, 0, 0), goal, speed, 1.5, dt=0.05)
             state["path"].set_data(poses[:, 0], poses[:, 1])
-            _fit(state["ax"], np.vstack([poses[:, :2], [[-4, -4], [4, 4]]]), g)
+            state["views"].fit(np.vstack([poses[:, :2], [[-4, -4], [4, 4]]]))
             state["goal"].update(goal)
             for k, ghost in enumerate(state["ghosts"]):
                 ghost.update(poses[round((k + 1) * (len(poses) - 1) / 5)])
@@ -373,6 +451,7 @@ def waypoint_panel() -> Panel:
                                   else "within the 15 ft/s limit all the way")
         except Exception as exc:
             state["msg"].set_text(f"cannot show this: {exc}")
+        return [*state["artists"], state["views"].marker]  # the panel blits these
 
     return Panel(controls, setup, update,
                  title="Waypoint: straight to a point while turning to a heading")
@@ -403,16 +482,20 @@ def circle_panel() -> Panel:
         ghosts = [draw_mecanum(ax, g, (0, 0, 0), color="0.5", alpha=0.35, rollers=False)
                   for _ in range(7)]
         car = draw_mecanum(ax, g, (0, 0, 0))
-        return fig, {"path": path, "ghosts": ghosts, "car": car, "ax": ax,
-                     "msg": _message_axes(fig)}
+        msg = _message_axes(fig)
+        moving = [a for ghost in ghosts for a in ghost.artists]
+        return fig, {"path": path, "ghosts": ghosts, "car": car, "ax": ax, "msg": msg,
+                     "views": _Views(ax, g), "runs": _Memo(_circle_run),
+                     "artists": _draw_order([path, *moving, *car.artists,
+                                             *ax.spines.values(), ax.title, msg])}
 
     def update(state, radius, lap_time, heading, refuse):
         try:
             if abs(radius) < 1e-9:
                 raise ValueError("radius must be non-zero")
-            text, poses, lap = _circle_run(g, radius, lap_time, heading, refuse)
+            text, poses, lap = state["runs"](g, radius, lap_time, heading, refuse)
             state["path"].set_data(poses[:, 0], poses[:, 1])
-            _fit(state["ax"], poses, g)
+            state["views"].fit(poses)
             for k, ghost in enumerate(state["ghosts"]):
                 ghost.update(poses[round((k + 1) * (len(poses) - 1) / 8)])
             state["car"].update(poses[0])
@@ -421,6 +504,7 @@ def circle_panel() -> Panel:
             state["msg"].set_text(text)
         except Exception as exc:
             state["msg"].set_text(f"cannot show this: {exc}")
+        return [*state["artists"], state["views"].marker]  # the panel blits these
 
     return Panel(controls, setup, update, title="Circle mode")
 

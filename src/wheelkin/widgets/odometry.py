@@ -17,6 +17,7 @@ import math
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.artist import Artist
 
 from wheelkin import odometry as odo
 from wheelkin.widgets import Panel, register
@@ -28,6 +29,14 @@ WHEEL_BASE_MM = 85.0  # Radon Ulzer: W
 SIDE_MM = 1000.0
 CORNER_RADIUS_MM = 150.0
 STEP_OPTIONS = (1, 2, 5, 10, 20, 50, 100)  # mm of wheel travel per odometry update
+#: The panel's view by direction: (x limits, y limits) in mm, where the legend and the text
+#: box go. The square starts at the middle of its first side, heading +x: it spans
+#: x = -500..500 and y = 0..1000 counter-clockwise, y = -1000..0 clockwise; the text box sits
+#: in the free strip beside its first side, the legend in the one beside the third.
+_VIEWS = {
+    "counter-clockwise": ((-800, 800), (-300, 1300), "upper right", (0.02, 0.02, "bottom")),
+    "clockwise": ((-800, 800), (-1300, 300), "lower right", (0.02, 0.98, "top")),
+}
 
 
 def rounded_square(side_mm=SIDE_MM, corner_radius_mm=CORNER_RADIUS_MM, clockwise=False):
@@ -81,28 +90,56 @@ def simulate_square(step_mm=10.0, diameter_error_pct=0.0, base_error_pct=0.0, *,
 def _setup():
     fig, ax = plt.subplots(figsize=(5.2, 4.6))
     ax.set_aspect("equal")
-    ax.set_xlim(-300, 1300)
-    ax.set_ylim(-700, 700)
+    (xlim, ylim, where, _) = _VIEWS["counter-clockwise"]
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
     ax.set_xlabel("x (mm), forward at the start")
     ax.set_ylabel("y (mm), left at the start")
     ax.grid(True, lw=0.3, alpha=0.5)
     truth = ax.plot([], [], color="k", lw=2.0, label="true path")[0]
     exact = ax.plot([], [], color="#1f77b4", lw=1.3, label="odometry, exact arc")[0]
     euler = ax.plot([], [], color="#ff7f0e", lw=1.1, ls="--", label="odometry, Euler")[0]
-    ax.plot([0], [0], marker="o", color="k", ms=5, ls="none")
+    origin = ax.plot([0], [0], marker="o", color="k", ms=5, ls="none")[0]
     ends = ax.plot([], [], marker="x", color="#1f77b4", ms=8, ls="none")[0]
-    ax.legend(loc="upper right", fontsize=7)
+    legend = ax.legend(loc=where, fontsize=7)
     text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=8, va="bottom",
                    family="monospace", bbox={"fc": "white", "ec": "#999999", "alpha": 0.9})
     message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center",
                       color="#b35900", fontsize=10, bbox={"fc": "white", "ec": "#b35900"})
     message.set_visible(False)
     fig.tight_layout()
+    # What _update moves, in drawing order: the panel redraws only these over a cached
+    # picture of the rest (axes, ticks, grid). The start mark, the frame and the legend do not
+    # move but are drawn over the paths. A change of direction changes the view: the marker of the
+    # view (an invisible artist) changes with it, so that the panel renders the axes anew.
+    moving = sorted([truth, exact, euler, origin, ends, *ax.spines.values(), legend, text,
+                     message],
+                    key=lambda artist: artist.get_zorder())
+    markers = (Artist(), Artist())
+    for marker in markers:
+        marker.set_visible(False)
     return fig, {"ax": ax, "truth": truth, "exact": exact, "euler": euler, "ends": ends,
-                 "text": text, "message": message}
+                 "text": text, "message": message, "legend": legend, "artists": moving,
+                 "markers": markers, "view": "counter-clockwise", "marker": markers[0]}
+
+
+def _show_view(state, direction: str) -> None:
+    """Limits, legend and text box for ``direction`` (a new marker when they change)."""
+    if direction == state["view"] or direction not in _VIEWS:
+        return
+    xlim, ylim, where, (x, y, va) = _VIEWS[direction]
+    state["ax"].set_xlim(*xlim)
+    state["ax"].set_ylim(*ylim)
+    state["legend"].set_loc(where)
+    state["text"].set_position((x, y))
+    state["text"].set_verticalalignment(va)
+    state["view"] = direction
+    a, b = state["markers"]
+    state["marker"] = b if state["marker"] is a else a
 
 
 def _update(state, step_mm, diameter_error_pct, base_error_pct, direction):
+    _show_view(state, direction)
     try:
         truth, est = simulate_square(float(step_mm), float(diameter_error_pct),
                                      float(base_error_pct),
@@ -113,7 +150,7 @@ def _update(state, step_mm, diameter_error_pct, base_error_pct, direction):
         for key in ("truth", "exact", "euler", "ends"):
             state[key].set_data([], [])
         state["text"].set_text("")
-        return
+        return [*state["artists"], state["marker"]]
     state["message"].set_visible(False)
     state["truth"].set_data(truth[:, 0], truth[:, 1])
     state["exact"].set_data(est["exact"][:, 0], est["exact"][:, 1])
@@ -125,6 +162,7 @@ def _update(state, step_mm, diameter_error_pct, base_error_pct, direction):
         f"{len(truth) - 1} updates of <= {float(step_mm):g} mm\n"
         f"end error, exact: {err['exact']:7.1f} mm {head['exact']:+6.2f} deg\n"
         f"end error, Euler: {err['euler']:7.1f} mm {head['euler']:+6.2f} deg")
+    return [*state["artists"], state["marker"]]  # the panel blits these
 
 
 @register("odometry.square")

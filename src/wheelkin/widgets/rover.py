@@ -71,8 +71,9 @@ class RoverView:
         g = geometry
         body = _screen(np.array([[g.d3 + 2, g.d1 - 2], [g.d3 + 2, -(g.d1 - 2)],
                                  [-g.d2 - 2, -(g.d1 - 2)], [-g.d2 - 2, g.d1 - 2]]))
-        ax.add_patch(Polygon(body, closed=True, fc="#dddddd", ec="#555555", lw=1.0, zorder=2))
-        ax.plot([0], [0], marker="+", color="k", ms=8, zorder=5)
+        self.body = ax.add_patch(Polygon(body, closed=True, fc="#dddddd", ec="#555555", lw=1.0,
+                                         zorder=2))
+        self.centre_mark = ax.plot([0], [0], marker="+", color="k", ms=8, zorder=5)[0]
         self.arcs = [ax.plot([], [], color=c, lw=1.0, alpha=0.8, zorder=1)[0] for c in _COLOURS]
         self.rays = [ax.plot([], [], color="#888888", lw=0.6, ls="--", zorder=1)[0]
                      for _ in range(6)]
@@ -90,6 +91,9 @@ class RoverView:
             self.labels.append(ax.text(px + (-2.2 if left else 2.2), py, "", fontsize=7,
                                        ha="right" if left else "left", va="center",
                                        zorder=6))
+        for i, label in enumerate(self.labels):
+            if i not in _CORNER_OF_WHEEL:
+                label.set_text(str(i + 1))
         self.icr = ax.plot([], [], marker="o", color="k", ms=5, zorder=6, ls="none")[0]
         self.icr_text = ax.text(0, 0, "", fontsize=8, ha="center", va="top", zorder=6)
         self.title = ax.set_title("", fontsize=9)
@@ -109,6 +113,15 @@ class RoverView:
         self.bar_text = [bx.text(i, 0, "", ha="center", va="bottom", fontsize=7)
                          for i in range(6)]
         bx.set_title("wheel speeds", fontsize=9)
+        # Everything update() moves, in drawing order: a panel redraws only these over a
+        # cached picture of the rest (fixed limits, so the axes never change). The body, its
+        # centre mark, the middle wheels' labels and the frame do not change, but are drawn
+        # over the rays and arcs, so they are redrawn too.
+        self.artists = sorted(
+            [self.body, self.centre_mark, *self.arcs, *self.rays, self.centre_arc, *self.wheels,
+             *self.labels, self.icr, self.icr_text, *ax.spines.values(), self.title,
+             self.message, *self.bars, self.centre_line, self.centre_text, *self.bar_text],
+            key=lambda artist: artist.get_zorder())
 
     # ------------------------------------------------------------------ drawing helpers
     def _wheel_outline(self, i: int, steer_rep103: float) -> np.ndarray:
@@ -119,8 +132,10 @@ class RoverView:
         rot = corners @ np.array([[c, s], [-s, c]])
         return _screen(self.pos[i] + rot)
 
-    def update(self, command: float, speed: float) -> None:
-        """Show the rover steered by ``command`` (-100..100) at ``speed`` (% of full)."""
+    def update(self, command: float, speed: float) -> list:
+        """Show the rover steered by ``command`` (-100..100) at ``speed`` (% of full).
+
+        Returns :attr:`artists`, the artists it may change (for a blitting panel)."""
         try:
             radius = rover.command_to_radius(command, mapping=self.mapping,
                                              geometry=self.geometry)
@@ -130,7 +145,7 @@ class RoverView:
         except ValueError as exc:  # never raise in a panel: say what is wrong instead
             self.message.set_text(str(exc)[:80])
             self.message.set_visible(True)
-            return
+            return self.artists
         self.message.set_visible(False)
         straight = not np.any(angles)
         steer = np.zeros(6)
@@ -138,12 +153,9 @@ class RoverView:
             steer[i] = -angles[k]  # REP-103: counter-clockwise positive
         for i, patch in enumerate(self.wheels):
             patch.set_xy(self._wheel_outline(i, steer[i]))
-        for i, label in enumerate(self.labels):
-            if i in _CORNER_OF_WHEEL:
-                angle = f"{math.degrees(angles[_CORNER_OF_WHEEL[i]]):+.1f}°"
-                label.set_text(f"{angle} {i + 1}" if i < 3 else f"{i + 1} {angle}")
-            else:
-                label.set_text(str(i + 1))
+        for i, k in _CORNER_OF_WHEEL.items():
+            angle = f"{math.degrees(angles[k]):+.1f}°"
+            self.labels[i].set_text(f"{angle} {i + 1}" if i < 3 else f"{i + 1} {angle}")
         scr = _screen(self.pos)
         if straight:
             for i, line in enumerate(self.arcs):
@@ -191,6 +203,7 @@ class RoverView:
         self.centre_line.set_ydata([centre, centre])
         self.centre_text.set_position((5.45, centre + 1.0))
         self.centre_text.set_text(f"body centre {centre:.0f}")
+        return self.artists
 
 
 def _figure(figsize=(8.0, 4.0), dpi=72) -> Figure:
@@ -216,8 +229,8 @@ def steering_panel() -> Panel:
         fig = _figure()
         return fig, RoverView(fig)
 
-    def update(view: RoverView, command: int, speed: int) -> None:
-        view.update(command, speed)
+    def update(view: RoverView, command: int, speed: int) -> list:
+        return view.update(command, speed)  # the moving artists: the panel blits them
 
     return Panel(controls, setup, update,
                  title="Open Source Rover: steering command and speed")
