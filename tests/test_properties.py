@@ -277,7 +277,7 @@ _G60 = mecanum.MecanumGeometry(0.05, 0.2, 0.15, roller_angle=math.pi / 3)
 #: Every formula from a body motion to wheel speeds: (name, fn(vx, vy, omega) -> array).
 WHEEL_SPEED_FORMULAS = [
     ("rover, six wheels (document units)",
-     lambda vx, vy, w: rover.wheel_speeds(40.0 if w >= 0 else -40.0, vx * 10)),
+     lambda vx, vy, w: rover.wheel_speeds(40.0, 10 * vx)),  # a right turn, r = 40 in
     ("mecanum, 45-degree rollers",
      lambda vx, vy, w: mecanum.inverse_kinematics(vx, vy, w, mecanum.EXAMPLE_GEOMETRY)),
     ("mecanum, 60-degree rollers", lambda vx, vy, w: mecanum.inverse_kinematics(vx, vy, w, _G60)),
