@@ -50,8 +50,9 @@ class Panel:
         take; a value the model rejects is shown as a message in the figure instead.
         If it returns the list of artists it changes (the same list every call), the panel
         *blits*: the rest of the figure (axes, ticks, labels: most of the drawing cost) is
-        rendered once and only those artists are redrawn over it. An update that changes axis
-        limits or anything outside that list must return None (a full redraw every time).
+        rendered once and only those artists are redrawn over it. When an update changes
+        anything outside that list (axis limits, a title), it returns None for that call: the
+        panel then redraws everything, and blits again from the next list it gets.
     title : str, optional
         Shown above the controls.
     dpi : int
@@ -119,6 +120,10 @@ class Panel:
             for artist in artists:
                 self.figure.draw_artist(artist)
         else:
+            if self._blit:  # back to full redraws: the blitted artists must be drawn again
+                for artist in self._blit:
+                    artist.set_animated(False)
+                self._blit = self._background = None
             canvas.draw()
         self.image.value = _png(canvas)
         return time.perf_counter() - start
