@@ -1,0 +1,83 @@
+"""The live-panel core: one redraw per change, blitting, and the return-None fallback."""
+
+import io
+
+import ipywidgets as W
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+from PIL import Image
+
+from wheelkin.widgets import Panel, slider_values
+
+
+def _panel(calls, blit=True, switch_at=None):
+    def setup():
+        fig = Figure(figsize=(3, 2))
+        ax = fig.add_subplot()
+        ax.set_xlim(-1, 1)
+        ax.set_ylim(-1, 1)
+        (line,) = ax.plot([], [], color=(0, 0, 1), lw=4)
+        return fig, {"ax": ax, "line": line}
+
+    def update(state, a, b):
+        calls.append((a, b))
+        state["line"].set_data([-1, 1], [a, a])
+        if switch_at is not None and a > switch_at:
+            state["ax"].set_ylim(-2, 2)
+            return None
+        state["ax"].set_ylim(-1, 1)
+        return [state["line"]] if blit else None
+
+    controls = {"a": W.FloatSlider(min=0.0, max=0.9, value=0.1),
+                "b": W.IntSlider(min=0, max=4, value=0)}
+    return Panel(controls, setup, update)
+
+
+def _blue_rows(panel):
+    """Rows of the rendered image that contain the blue line (its height on the canvas)."""
+    im = np.asarray(Image.open(io.BytesIO(panel.image.value)).convert("RGB")).astype(int)
+    mask = (im[..., 2] > 200) & (im[..., 0] < 60) & (im[..., 1] < 60)
+    return np.flatnonzero(mask.any(axis=1))
+
+
+@pytest.mark.parametrize("blit", [True, False])
+def test_one_update_per_change_and_per_redraw(blit):
+    calls = []
+    panel = _panel(calls, blit=blit)
+    assert calls == [(0.1, 0)]                      # the initial draw
+    panel.controls["a"].value = 0.5                 # a slider move: exactly one redraw
+    assert calls[-1] == (0.5, 0) and len(calls) == 2
+    panel.redraw(a=0.2, b=3)                        # several overrides: still one redraw
+    assert calls[-1] == (0.2, 3) and len(calls) == 3
+
+
+def test_blitted_frames_match_full_redraws():
+    fast, slow = _panel([], blit=True), _panel([], blit=False)
+    for a in (0.0, 0.3, 0.6, 0.9):
+        fast.redraw(a=a)
+        slow.redraw(a=a)
+        np.testing.assert_array_equal(_blue_rows(fast), _blue_rows(slow))
+        assert _blue_rows(fast).size > 0
+
+
+def test_returning_none_after_blitting_redraws_everything_and_keeps_the_artists():
+    panel = _panel([], blit=True, switch_at=0.5)
+    low = _blue_rows(panel)
+    panel.redraw(a=0.8)           # limits change: full redraw, the line must still be drawn
+    assert _blue_rows(panel).size > 0
+    panel.redraw(a=0.1)           # back to blitting: the same picture as at the start
+    np.testing.assert_array_equal(_blue_rows(panel), low)
+
+
+def test_unknown_control_is_named():
+    panel = _panel([])
+    with pytest.raises(ValueError, match="unknown control 'c'"):
+        panel.redraw(c=1)
+
+
+def test_slider_values_cover_the_whole_range():
+    assert slider_values(W.FloatSlider(min=-2.0, max=2.0), n=5) == [-2.0, -1.0, 0.0, 1.0, 2.0]
+    assert slider_values(W.IntSlider(min=0, max=3), n=9) == [0, 1, 2, 3]
+    assert slider_values(W.Checkbox()) == [False, True]
+    assert slider_values(W.Dropdown(options=[("x", 1), ("y", 2)])) == [1, 2]
