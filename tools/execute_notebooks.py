@@ -93,6 +93,25 @@ def _join(text) -> str:
     return "".join(text) if isinstance(text, list) else str(text)
 
 
+def _merge_streams(outputs: list) -> list:
+    """Join consecutive stdout (or stderr) outputs into one.
+
+    The kernel flushes its streams on a timer, so one ``print`` can arrive as two messages
+    ("rank =" and " 2\\n") on one run and as one on the next. Merged, the stored text is the
+    same either way (nbval compares merged streams too).
+    """
+    merged: list = []
+    for output in outputs:
+        previous = merged[-1] if merged else None
+        if (output.get("output_type") == "stream" and previous is not None
+                and previous.get("output_type") == "stream"
+                and previous.get("name") == output.get("name")):
+            previous["text"] = _join(previous.get("text", "")) + _join(output.get("text", ""))
+        else:
+            merged.append(output)
+    return merged
+
+
 def normalise(nb: nbformat.NotebookNode, name: str) -> nbformat.NotebookNode:
     """Return ``nb`` in canonical form: the same however often and wherever it was executed.
 
@@ -118,6 +137,7 @@ def normalise(nb: nbformat.NotebookNode, name: str) -> nbformat.NotebookNode:
         if cell.get("execution_count") is not None:
             count += 1
             cell.execution_count = count
+        cell.outputs = _merge_streams(cell.get("outputs", []))
         for output in cell.get("outputs", []):
             if output.get("output_type") == "execute_result":
                 output.execution_count = cell.execution_count
