@@ -467,3 +467,13 @@ def test_wheel_speed_view_flags_the_int32_overflow():
     view.update(1000, 0)
     assert view.bar_text[1].get_text().startswith("centre 500 ")
     assert view.bar_text[0].get_text().startswith("centre 1000 ")
+
+
+@settings(max_examples=200)
+@given(st.floats(-50.0, 50.0), st.floats(-50.0, 50.0), st.floats(1e-3, 10.0))
+def test_unchecked_wheel_speeds_are_wheel_speeds_to_the_last_bit(v, omega, width):
+    fast = dd._wheel_speeds_unchecked(v, omega, width)
+    slow = dd.wheel_speeds(v, omega, width)
+    assert np.asarray(fast).tobytes() == np.asarray(slow, dtype=float).tobytes()
+    with pytest.raises(ValueError, match="track_width"):  # the public one still checks
+        dd.wheel_speeds(v, omega, -width)

@@ -414,3 +414,30 @@ def test_every_odometry_panel_survives_every_slider_value():
                     panel.redraw(**{name: value})
         finally:
             panel.close()
+
+
+# --------------------------------------------------------------------------------------------
+# the unvalidated fast path of pose_update (the waypoint panel's controller loop)
+
+def _bits(values) -> bytes:
+    return np.asarray(values, dtype=float).tobytes()  # sign of zero and last bit included
+
+
+@settings(max_examples=300)
+@given(st.floats(-1e4, 1e4), st.floats(-1e4, 1e4), st.floats(-50.0, 50.0),
+       st.floats(-1e3, 1e3),
+       st.one_of(st.floats(-7.0, 7.0), st.floats(-2e-4, 2e-4),
+                 st.sampled_from([0.0, -0.0, odo.SERIES_THRESHOLD, -odo.SERIES_THRESHOLD,
+                                  float(np.nextafter(odo.SERIES_THRESHOLD, 0.0)), math.pi])))
+def test_unchecked_pose_update_is_the_exact_pose_update_to_the_last_bit(x, y, th, ds, dth):
+    fast = odo._pose_update_unchecked(x, y, th, ds, dth)
+    assert all(type(c) is float for c in fast)
+    assert _bits(fast) == _bits(odo.pose_update([x, y, th], ds, dth, "exact"))
+
+
+def test_pose_update_still_validates_beside_its_fast_path():
+    for args, name in ((([math.nan, 0.0, 0.0], 1.0, 0.0), "pose"),
+                       (([0.0, 0.0, 0.0], math.nan, 0.0), "distance"),
+                       (([0.0, 0.0, 0.0], 1.0, math.inf), "dtheta")):
+        with pytest.raises(ValueError, match=name):
+            odo.pose_update(*args)

@@ -158,3 +158,31 @@ def test_slip_panel_redraws_at_every_slider_extreme_without_raising():
         assert len(view.slips.get_data()[0]) > 0
     finally:
         panel.close()
+
+
+def test_slip_panel_blits_the_same_picture_as_a_full_draw():
+    import io
+
+    from PIL import Image
+
+    from wheelkin.sandbox.vehicles import GRAVITY
+    from wheelkin.widgets import all_panels
+
+    panel = all_panels()["sandbox.slip"]()
+    try:
+        assert panel._blit  # the panel blits
+        for mu, omega in ((0.8, 2.0), (0.05, 6.0), (1.0, 0.0), (0.3, 4.0), (0.8, 2.0)):
+            panel.redraw(mu=mu, omega=omega)
+            blitted = np.asarray(Image.open(io.BytesIO(panel.image.value)))
+            for artist in panel._blit:  # a full draw of the same figure
+                artist.set_animated(False)
+            try:
+                panel.figure.canvas.draw()
+                full = np.asarray(panel.figure.canvas.buffer_rgba()).copy()
+            finally:
+                for artist in panel._blit:
+                    artist.set_animated(True)
+            np.testing.assert_array_equal(blitted, full)
+            assert f"grip ≈ {0.8 * mu * GRAVITY:.1f}" in panel.state.title.get_text()
+    finally:
+        panel.close()

@@ -42,8 +42,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from wheelkin import _validate as v
-from wheelkin.diffdrive import wheel_speeds
+from wheelkin.diffdrive import _wheel_speeds_unchecked, wheel_speeds
 from wheelkin.frames import wrap_angle
+from wheelkin.odometry import _pose_update_unchecked
 
 __all__ = [
     "LAB_ARC_RADIUS",
@@ -118,6 +119,7 @@ LAB_HALF_AXLE = 0.06
 LAB_HALF_WHEELBASE = 0.05
 
 _TOL = 1e-6  # m: two waypoints closer than this are "the same"; offsets within it "match"
+_TWO_PI = 2.0 * math.pi
 _KINDS = ("straight", "arc", "turn")
 
 
@@ -192,6 +194,17 @@ class Segment:
             x = np.full_like(f, x0)
             y = np.full_like(f, y0)
         return np.stack(np.broadcast_arrays(x, y, theta), axis=-1)
+
+
+def _wrap_unchecked(angle: float) -> float:
+    """:func:`wheelkin.frames.wrap_angle` of one finite Python float, unvalidated (the
+    follower's inner loop): the same operations, so the same result to the last bit."""
+    if -math.pi < angle <= math.pi:
+        return angle
+    r = float(np.remainder(angle + math.pi, _TWO_PI)) - math.pi
+    if r <= -math.pi:
+        r += _TWO_PI
+    return min(r, math.pi)
 
 
 def _snap(value: float) -> float:
@@ -725,10 +738,14 @@ class PathFollower:
         if p.ndim != 1:
             raise ValueError(f"pose must have shape (3,), got shape {p.shape}")
         x, y, theta = (float(a) for a in p)
+        return self._command_unchecked(x, y, theta)
+
+    def _command_unchecked(self, x: float, y: float, theta: float) -> tuple[float, float]:
+        """:meth:`command` for a pose of finite Python floats, unvalidated (inner loops)."""
         while not self.done:
             seg = self.segments[self.index]
             if seg.kind == "turn":
-                error = float(wrap_angle(seg.end[2] - theta))
+                error = _wrap_unchecked(seg.end[2] - theta)
                 if abs(error) < self.heading_tolerance:
                     self.index += 1
                     continue
@@ -969,3 +986,41 @@ class FollowerController:
         if self.follower.done and self.finish_time is None:
             self.finish_time = float(t)
         self.robot.set_side_rates(*self.rates(speed, yaw_rate))
+
+    def _tick_unchecked(self, t: float, left_angle: float,
+                        right_angle: float) -> tuple[float, float] | None:
+        """What :meth:`__call__` does at time ``t``, unvalidated, for a fast simulation loop.
+
+        The caller passes the mean encoder angles (rad) of the left and right wheels (as Python
+        floats) instead of a robot to read, and gets back the (left, right) wheel rates to hold
+        from now on, or None between ticks (keep the previous rates). The estimate, the logs
+        and ``finish_time`` are kept as by :meth:`__call__`, to the last bit (the tests compare
+        whole laps); nothing is checked, so a NaN reading gives NaNs instead of a
+        ``ValueError``. The robot passed to the constructor is not used.
+        """
+        if t < self._next_tick - 1e-12:
+            return None
+        self._next_tick += self.period
+        x, y, theta = (float(a) for a in self.estimate)
+        if self._last is not None:
+            r = self.wheel_radius
+            ds_left = r * (left_angle - self._last[0])
+            ds_right = r * (right_angle - self._last[1])
+            distance = 0.5 * (ds_left + ds_right)
+            dtheta = (ds_right - ds_left) / self.odometry_track_width
+            x, y, theta = _pose_update_unchecked(x, y, theta, distance, dtheta)
+            self.estimate = np.array((x, y, theta))
+        self._last = (left_angle, right_angle)
+        self.log_t.append(float(t))
+        self.log_estimate.append((x, y, theta))
+        speed, yaw_rate = self.follower._command_unchecked(x, y, theta)
+        if self.follower.done and self.finish_time is None:
+            self.finish_time = float(t)
+        left, right = _wheel_speeds_unchecked(speed, yaw_rate, self.track_width)
+        left, right = left / self.wheel_radius, right / self.wheel_radius
+        if self.max_wheel_rate is not None:
+            biggest = max(abs(left), abs(right))
+            if biggest > self.max_wheel_rate:
+                left, right = (left * self.max_wheel_rate / biggest,
+                               right * self.max_wheel_rate / biggest)
+        return left, right

@@ -11,6 +11,7 @@ rest), so the robot holds its circle while v omega < 0.8 mu g and slides off bey
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import ipywidgets as widgets
 import numpy as np
@@ -51,42 +52,69 @@ class SlipView:
         self.message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center",
                                va="center", color="#d62728")
 
-    def update(self, mu: float, omega: float) -> None:
+    @property
+    def artists(self) -> list:
+        """What :meth:`update` changes and everything a full draw draws over it, in drawing
+        order (the axes' limits are fixed): a panel redraws only these over a cached picture
+        of the rest. The frame and the legend do not change, but are drawn over the paths."""
+        moving = [self.circle, self.path, self.slips, *self.robot.artists, self.title,
+                  self.message]
+        order = sorted((a for a in self.ax.get_children() if a is not self.ax.patch),
+                       key=lambda artist: artist.get_zorder())  # as Axes.draw sorts them
+        first = min(i for i, artist in enumerate(order) if any(artist is m for m in moving))
+        return order[first:]
+
+    def update(self, mu: float, omega: float) -> list:
+        """Show the run for ``mu`` and ``omega``; returns :attr:`artists` (for blitting)."""
         try:
-            spec = RADON_ULZER.replace(mu=float(mu))
-            omega = float(omega)
+            run = _run(float(mu), float(omega))
         except ValueError as exc:  # a value the model rejects: say so, do not raise
             self.message.set_text(str(exc))
-            return
+            return self.artists
         self.message.set_text("")
-        world = World(dt=DT)
-        robot = world.add(spec)
-
-        def ramp(t, _world):
-            s = min(t / RAMP, 1.0)
-            robot.command_twist(SPEED * s, 0.0, omega * s)
-
-        traj = world.run(DURATION, ramp)
-        # Kinematic model of the same (ramped) command, integrated exactly per step.
-        t = traj.t[:-1] + 0.5 * DT
-        s = np.minimum(t / RAMP, 1.0)
-        v, w = SPEED * s, omega * s
-        theta = np.concatenate([[0.0], np.cumsum(w * DT)])
-        half = 0.5 * w * DT
-        chord = v * DT * np.sinc(half / np.pi)
-        mid = theta[:-1] + half
-        ideal = np.column_stack([np.concatenate([[0.0], np.cumsum(chord * np.cos(mid))]),
-                                 np.concatenate([[0.0], np.cumsum(chord * np.sin(mid))])])
+        ideal, pose, slipping, twist, title = run
         self.circle.set_data(ideal[:, 0], ideal[:, 1])
-        self.path.set_data(traj.pose[:, 0], traj.pose[:, 1])
-        slipping = traj.slipping.any(axis=1)
-        self.slips.set_data(traj.pose[slipping, 0], traj.pose[slipping, 1])
-        self.robot.update(traj.pose[-1], twist=traj.twist[-1], slipping=traj.slipping[-1])
-        need = SPEED * abs(omega)
-        grip = 0.8 * spec.mu * GRAVITY
-        off = math.dist(traj.pose[-1, :2], ideal[-1])
-        self.title.set_text(f"needs v·ω = {need:.1f} m/s², wheels grip ≈ {grip:.1f} m/s²; "
-                            f"off the model by {off * 100:.1f} cm after {DURATION:g} s")
+        self.path.set_data(pose[:, 0], pose[:, 1])
+        slips = slipping.any(axis=1)
+        self.slips.set_data(pose[slips, 0], pose[slips, 1])
+        self.robot.update(pose[-1], twist=twist[-1], slipping=slipping[-1])
+        self.title.set_text(title)
+        return self.artists
+
+
+@lru_cache(maxsize=256)
+def _run(mu: float, omega: float):
+    """The sandbox's run and the kinematic model's path for one (mu, omega), remembered (a
+    student drags a slider back and forth over the same values; a run is computed once):
+    ``(ideal (N, 2), pose (N, 3), slipping (N, wheels), twist (N, 3), title)``."""
+    spec = RADON_ULZER.replace(mu=mu)
+    world = World(dt=DT)
+    robot = world.add(spec)
+
+    def ramp(t, _world):
+        s = min(t / RAMP, 1.0)
+        robot.command_twist(SPEED * s, 0.0, omega * s)
+
+    traj = world.run(DURATION, ramp)
+    # Kinematic model of the same (ramped) command, integrated exactly per step.
+    t = traj.t[:-1] + 0.5 * DT
+    s = np.minimum(t / RAMP, 1.0)
+    v, w = SPEED * s, omega * s
+    theta = np.concatenate([[0.0], np.cumsum(w * DT)])
+    half = 0.5 * w * DT
+    chord = v * DT * np.sinc(half / np.pi)
+    mid = theta[:-1] + half
+    ideal = np.column_stack([np.concatenate([[0.0], np.cumsum(chord * np.cos(mid))]),
+                             np.concatenate([[0.0], np.cumsum(chord * np.sin(mid))])])
+    need = SPEED * abs(omega)
+    grip = 0.8 * spec.mu * GRAVITY
+    off = math.dist(traj.pose[-1, :2], ideal[-1])
+    title = (f"needs v·ω = {need:.1f} m/s², wheels grip ≈ {grip:.1f} m/s²; "
+             f"off the model by {off * 100:.1f} cm after {DURATION:g} s")
+    arrays = ideal, traj.pose, traj.slipping, traj.twist
+    for array in arrays:
+        array.flags.writeable = False  # shared by every later call with these values
+    return (*arrays, title)
 
 
 def slip_panel() -> Panel:
@@ -96,8 +124,8 @@ def slip_panel() -> Panel:
         fig = Figure(figsize=(6.0, 4.6), dpi=72)
         return fig, SlipView(fig)
 
-    def update(view: SlipView, mu: float, omega: float) -> None:
-        view.update(mu, omega)
+    def update(view: SlipView, mu: float, omega: float) -> list:
+        return view.update(mu, omega)  # the moving artists: the panel blits them
 
     controls = {
         "mu": widgets.FloatSlider(value=0.8, min=0.05, max=1.0, step=0.05, description="μ",

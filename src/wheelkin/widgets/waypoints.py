@@ -116,20 +116,77 @@ class KinematicSkidSteer:
         """Poses (steps + 1, 3) after each step, from the start: exact arcs of the mean twist
         of each step, the track widened by the skid factor (:func:`wheelkin.odometry.integrate`
         in mm)."""
-        x0, y0, th0 = self.start
-        if not self._travel:
-            return np.array([self.start])
-        poses = integrate(np.asarray(self._travel) * 1000.0, 1.0,
-                          2 * _B * self.skid_factor * 1000.0, method="exact",
-                          pose=(x0 * 1000.0, y0 * 1000.0, th0))
-        poses = np.vstack([[x0 * 1000.0, y0 * 1000.0, th0], poses])
-        poses[:, :2] /= 1000.0
-        return poses
+        return _path(self.start, self._travel, self.skid_factor)
 
     @property
     def pose(self) -> tuple[float, float, float]:
         """The pose now (x, y, theta)."""
         return tuple(float(a) for a in self.path()[-1])
+
+
+def _path(start, travel, skid_factor: float) -> np.ndarray:
+    """Poses (len(travel) + 1, 3) from ``start`` after each step's (left, right) travel (m)."""
+    x0, y0, th0 = start
+    if not travel:
+        return np.array([start])
+    poses = integrate(np.asarray(travel) * 1000.0, 1.0, 2 * _B * skid_factor * 1000.0,
+                      method="exact", pose=(x0 * 1000.0, y0 * 1000.0, th0))
+    poses = np.vstack([[x0 * 1000.0, y0 * 1000.0, th0], poses])
+    poses[:, :2] /= 1000.0
+    return poses
+
+
+def _drive_unchecked(robot: KinematicSkidSteer, ctrl: wp.FollowerController, h: float,
+                     substeps: int, max_time: float) -> None:
+    """The closed loop of :func:`surrogate_lap`, fast: ``robot`` driven by ``ctrl``.
+
+    The same arithmetic as calling ``ctrl(t)`` and ``robot.step(h)`` in turn, in the same
+    order, to the last bit (the tests compare whole laps), on Python floats instead of
+    arrays of four wheels and without the validation of the public functions (the
+    constructors have checked everything). The left wheels (FL, RL) get the same commands
+    from the same rest, so they turn alike, as do the right ones (FR, RR): one angle per side
+    is the mean of its two encoders. Leaves the robot and the controller as the slow loop
+    would.
+    """
+    r, tau = wp.LAB_WHEEL_RADIUS, robot.tau
+    decay = math.exp(-h / tau) if tau > 0 else 0.0
+    spr = robot.encoder.steps_per_rev
+    to_counts = spr / (2 * math.pi) if spr is not None else 0.0
+    to_angle = 2 * math.pi / spr if spr is not None else 0.0
+    if robot.steps or robot.encoder.noise or np.any(robot._cmd) or np.any(robot._rates):
+        raise ValueError("the fast loop starts from a fresh KinematicSkidSteer at rest")
+    cmd_l = cmd_r = rate_l = rate_r = angle_l = angle_r = 0.0
+    travel = robot._travel
+    tick = ctrl._tick_unchecked
+    steps = 0
+    for k in range(int(max_time / h)):
+        if (k % substeps == 0 and ctrl.finish_time is not None
+                and k * h > ctrl.finish_time + 1.0):
+            break
+        if spr is None:
+            read_l, read_r = angle_l, angle_r
+        else:  # Encoder.counts, then Encoder.angles
+            read_l = float(math.floor(angle_l * to_counts + 0.5)) * to_angle
+            read_r = float(math.floor(angle_r * to_counts + 0.5)) * to_angle
+        rates = tick(k * h + 0.5 * h, read_l, read_r)
+        if rates is not None:
+            cmd_l, cmd_r = rates
+        # KinematicSkidSteer.step
+        if tau > 0:
+            mean_l = cmd_l + (rate_l - cmd_l) * tau * (1 - decay) / h
+            mean_r = cmd_r + (rate_r - cmd_r) * tau * (1 - decay) / h
+            rate_l = cmd_l + (rate_l - cmd_l) * decay
+            rate_r = cmd_r + (rate_r - cmd_r) * decay
+        else:
+            mean_l, mean_r = rate_l, rate_r = cmd_l, cmd_r
+        travel.append((r * (mean_l + mean_l) / 2 * h, r * (mean_r + mean_r) / 2 * h))
+        angle_l = angle_l + mean_l * h
+        angle_r = angle_r + mean_r * h
+        steps += 1
+    robot._cmd = np.array([cmd_l, cmd_r, cmd_l, cmd_r])
+    robot._rates = np.array([rate_l, rate_r, rate_l, rate_r])
+    robot._angles = np.array([angle_l, angle_r, angle_l, angle_r])
+    robot.steps = steps
 
 
 def surrogate_lap(*, speed: float = 0.3, lookahead: float = 0.15, heading_gain: float = 4.0,
@@ -158,12 +215,7 @@ def surrogate_lap(*, speed: float = 0.3, lookahead: float = 0.15, heading_gain: 
     h = PERIOD / substeps
     if max_time is None:
         max_time = 2.0 * sum(s.length for s in segments) / speed + 30.0
-    for k in range(int(max_time / h)):
-        if (k % substeps == 0 and ctrl.finish_time is not None
-                and k * h > ctrl.finish_time + 1.0):
-            break
-        ctrl(k * h + 0.5 * h, None)
-        robot.step(h)
+    _drive_unchecked(robot, ctrl, h, substeps, max_time)
     truth = robot.path()[::substeps]
     estimate = np.array(ctrl.log_estimate)
     n = min(len(truth), len(estimate))
@@ -177,10 +229,23 @@ def surrogate_lap(*, speed: float = 0.3, lookahead: float = 0.15, heading_gain: 
     }
 
 
-@lru_cache(maxsize=64)
-def _cached_lap(speed, lookahead, heading_gain, steps_per_rev, track):
-    return surrogate_lap(speed=speed, lookahead=lookahead, heading_gain=heading_gain,
-                         steps_per_rev=steps_per_rev or None, odometry_track_width=track)
+@lru_cache(maxsize=128)
+def _lap_picture(speed, lookahead, heading_gain, steps_per_rev, track):
+    """What the panel shows of one lap: the true path, the estimate and the summary text
+    (remembered: a student drags a slider back and forth over the same values)."""
+    lap = surrogate_lap(speed=speed, lookahead=lookahead, heading_gain=heading_gain,
+                        steps_per_rev=steps_per_rev or None, odometry_track_width=track)
+    finish = lap["finish_time"]
+    clearance = float(wp.distance_to_walls(lap["truth"][:, :2]).min())
+    lines = [
+        f"lap time      {finish:6.2f} s" if finish is not None else "lap time      not finished",
+        f"final error   {lap['final_error'] * 100:6.1f} cm",
+        f"worst waypt   {lap['waypoint_errors'][1:].max() * 100:6.1f} cm",
+        f"wall gap min  {clearance * 100:6.1f} cm" + ("  (touch!)" if clearance < 0.12 else ""),
+    ]
+    for array in (lap["truth"], lap["estimate"]):
+        array.flags.writeable = False  # shared by every later call with these values
+    return lap["truth"], lap["estimate"], "\n".join(lines)
 
 
 def _robot_outline(pose) -> np.ndarray:
@@ -216,6 +281,14 @@ class LabView:
         ax.set_ylabel("y, north (m)")
         ax.legend(loc="lower left", fontsize=7, ncol=3, framealpha=0.9)
 
+    @property
+    def artists(self) -> list:
+        """What :meth:`show` changes and everything a full draw draws over it, in drawing
+        order: a panel redraws only these over a cached picture of the rest (the arena's
+        limits are fixed). The frame, the title and the legend do not change, but are drawn
+        over the paths, so they are redrawn too."""
+        return _drawn_over(self.ax, [self.truth, self.estimate, self.robot, self.text])
+
     def show(self, truth, estimate=None, text: str = "") -> None:
         """Draw a true path (N, 3), an optional estimate, the robot at the path's end."""
         truth = np.asarray(truth, dtype=float)
@@ -229,6 +302,17 @@ class LabView:
         self.text.set_text(text)
 
 
+def _drawn_over(ax, moving) -> list:
+    """``moving`` and every artist of ``ax`` that a full draw draws after the first of them,
+    in the full draw's order (by zorder, then as listed by ``get_children``, as
+    ``Axes.draw`` sorts them): redrawn in this order over a picture of the rest, they give
+    the full draw's pixels."""
+    order = sorted((a for a in ax.get_children() if a is not ax.patch),
+                   key=lambda artist: artist.get_zorder())
+    first = min(i for i, artist in enumerate(order) if any(artist is m for m in moving))
+    return order[first:]
+
+
 def _setup():
     fig, ax = plt.subplots(figsize=(5.5, 5.5))
     view = LabView(ax)
@@ -237,22 +321,16 @@ def _setup():
     return fig, view
 
 
-def _update(view: LabView, *, speed, lookahead, heading_gain, encoder, track) -> None:
+def _update(view: LabView, *, speed, lookahead, heading_gain, encoder, track) -> list:
     try:
-        lap = _cached_lap(round(float(speed), 4), round(float(lookahead), 4),
-                          round(float(heading_gain), 4), int(encoder), float(track))
+        truth, estimate, text = _lap_picture(round(float(speed), 4), round(float(lookahead), 4),
+                                             round(float(heading_gain), 4), int(encoder),
+                                             float(track))
     except ValueError as exc:  # pragma: no cover - every slider value is valid
         view.show(np.array([[1.5, -1.5, math.pi / 2]]), text=f"cannot run: {exc}")
-        return
-    finish = lap["finish_time"]
-    clearance = float(wp.distance_to_walls(lap["truth"][:, :2]).min())
-    lines = [
-        f"lap time      {finish:6.2f} s" if finish is not None else "lap time      not finished",
-        f"final error   {lap['final_error'] * 100:6.1f} cm",
-        f"worst waypt   {lap['waypoint_errors'][1:].max() * 100:6.1f} cm",
-        f"wall gap min  {clearance * 100:6.1f} cm" + ("  (touch!)" if clearance < 0.12 else ""),
-    ]
-    view.show(lap["truth"], lap["estimate"], "\n".join(lines))
+    else:
+        view.show(truth, estimate, text)
+    return view.artists  # the panel blits these
 
 
 @register("waypoints.lab")
