@@ -732,25 +732,29 @@ def test_fast_loop_leaves_robot_and_controller_as_the_public_calls(tau):
     assert fast_ctrl._next_tick == slow_ctrl._next_tick
 
 
-def _blitted_and_full(panel):
-    """The panel's last (blitted) picture, and a full draw of the same figure."""
+def _png_pixels(panel) -> np.ndarray:
     import io
 
     from PIL import Image
 
-    blitted = np.asarray(Image.open(io.BytesIO(panel.image.value)))
-    for artist in panel._blit:
-        artist.set_animated(False)
-    try:
-        panel.figure.canvas.draw()
-        full = np.asarray(panel.figure.canvas.buffer_rgba()).copy()
-    finally:
-        for artist in panel._blit:
-            artist.set_animated(True)
-    return blitted, full
+    return np.asarray(Image.open(io.BytesIO(panel.image.value)))
 
 
-def test_lab_panel_blits_the_same_picture_as_a_full_draw():
+def _full_draw(setup, update, dpi=72, **values) -> np.ndarray:
+    """The picture of a fresh figure drawn whole (no panel, nothing blitted)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig, state = setup()
+    plt.close(fig)
+    FigureCanvasAgg(fig)
+    fig.set_dpi(dpi)
+    update(state, **values)
+    fig.canvas.draw()
+    return np.asarray(fig.canvas.buffer_rgba()).copy()
+
+
+def test_lab_panel_blits_the_picture_of_a_full_draw():
     pytest.importorskip("wheelkin.sandbox")
     from wheelkin.widgets import waypoints as ww
 
@@ -762,8 +766,52 @@ def test_lab_panel_blits_the_same_picture_as_a_full_draw():
                        {"speed": 0.1, "lookahead": 0.5, "heading_gain": 1.0, "encoder": 0,
                         "track": ww.EFFECTIVE_TRACK}):
             panel.redraw(**values)
-            blitted, full = _blitted_and_full(panel)
-            assert (blitted != 255).any()
-            np.testing.assert_array_equal(blitted, full)
+            full = _full_draw(ww._setup, ww._update, **panel.values())
+            assert (full != 255).any()
+            np.testing.assert_array_equal(_png_pixels(panel), full)
+    finally:
+        panel.close()
+
+
+def test_lab_view_redraws_the_legend_only_over_a_path_that_runs_under_it():
+    pytest.importorskip("wheelkin.sandbox")
+    import ipywidgets
+    import matplotlib.pyplot as plt
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from wheelkin.widgets import Panel
+    from wheelkin.widgets import waypoints as ww
+
+    fig, view = ww._setup()  # where the legend is, in data units
+    plt.close(fig)
+    FigureCanvasAgg(fig)
+    fig.set_dpi(72)
+    view.ax.apply_aspect()
+    box = view.ax.get_legend().get_window_extent(fig.canvas.get_renderer())
+    (x0, y0), (x1, y1) = view.ax.transData.inverted().transform(box.get_points())
+    per_pixel = (y1 - y0) / box.height
+    lap = ww.surrogate_lap()
+    paths = [lap["truth"],                                              # clear of the legend
+             np.array([[-2.5, -2.2, 0.0], [-0.5, -1.9, 0.0], [0.0, 0.0, 1.0]]),  # under it
+             np.array([[1.5, -1.5, 0.0], [-1.2, -1.8, 3.0]])]  # the robot beside it
+    # paths 0 to 4 pixels above its top edge: a stroke's edge, blurred, reaches it
+    paths += [np.array([[x0 - 0.3, y1 + d * per_pixel, 0.0], [x1 + 0.3, y1 + d * per_pixel, 0.0],
+                        [1.5, 1.5, 0.0]]) for d in (0.0, 0.5, 1.0, 1.5, 2.0, 3.0, 4.0)]
+
+    def update(view, k):
+        view.show(paths[k], paths[k][::-1], text=f"path {k}")
+        return view.blit_artists()
+
+    panel = Panel({"k": ipywidgets.IntSlider(value=0, min=0, max=len(paths) - 1)}, ww._setup,
+                  update)
+    try:
+        legend = panel.state.ax.get_legend()
+        seen = set()
+        for k in (0, 1, 0, 2, 2, 1, 1, 0, *range(3, len(paths)), 0, *range(3, len(paths))):
+            panel.redraw(k=k)
+            seen.add(any(a is legend for a in panel._blit))
+            np.testing.assert_array_equal(_png_pixels(panel), _full_draw(ww._setup, update, k=k),
+                                          err_msg=f"path {k}")
+        assert seen == {True, False}  # both cases met
     finally:
         panel.close()

@@ -21,6 +21,7 @@ from wheelkin.sandbox import RADON_ULZER, World
 from wheelkin.sandbox.render import draw_vehicle
 from wheelkin.sandbox.vehicles import GRAVITY
 from wheelkin.widgets import Panel, register
+from wheelkin.widgets._blit import BlitList
 
 __all__ = ["SlipView", "slip_panel"]
 
@@ -52,25 +53,20 @@ class SlipView:
         self.message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center",
                                va="center", color="#d62728")
 
-    @property
-    def artists(self) -> list:
-        """What :meth:`update` changes and everything a full draw draws over it, in drawing
-        order (the axes' limits are fixed): a panel redraws only these over a cached picture
-        of the rest. The frame and the legend do not change, but are drawn over the paths."""
-        moving = [self.circle, self.path, self.slips, *self.robot.artists, self.title,
-                  self.message]
-        order = sorted((a for a in self.ax.get_children() if a is not self.ax.patch),
-                       key=lambda artist: artist.get_zorder())  # as Axes.draw sorts them
-        first = min(i for i, artist in enumerate(order) if any(artist is m for m in moving))
-        return order[first:]
+        self._blit = BlitList(ax, [self.circle, self.path, self.slips, *self.robot.artists,
+                                   self.title, self.message])
 
     def update(self, mu: float, omega: float) -> list:
-        """Show the run for ``mu`` and ``omega``; returns :attr:`artists` (for blitting)."""
+        """Show the run for ``mu`` and ``omega``.
+
+        Returns the artists it changed and what a full draw paints over them there (the
+        frame; the legend when a path runs under it), in drawing order, for a blitting
+        panel (the axes' limits are fixed)."""
         try:
             run = _run(float(mu), float(omega))
         except ValueError as exc:  # a value the model rejects: say so, do not raise
             self.message.set_text(str(exc))
-            return self.artists
+            return self._blit()
         self.message.set_text("")
         ideal, pose, slipping, twist, title = run
         self.circle.set_data(ideal[:, 0], ideal[:, 1])
@@ -79,7 +75,7 @@ class SlipView:
         self.slips.set_data(pose[slips, 0], pose[slips, 1])
         self.robot.update(pose[-1], twist=twist[-1], slipping=slipping[-1])
         self.title.set_text(title)
-        return self.artists
+        return self._blit()
 
 
 @lru_cache(maxsize=256)

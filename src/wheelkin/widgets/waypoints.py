@@ -29,6 +29,7 @@ from wheelkin.odometry import integrate
 from wheelkin.sandbox import LAB_ROBOT
 from wheelkin.sandbox.sensors import Encoder
 from wheelkin.widgets import Panel, register
+from wheelkin.widgets._blit import BlitList
 
 __all__ = ["SKID_FACTOR", "KinematicSkidSteer", "LabView", "lab_panel", "surrogate_lap"]
 
@@ -281,13 +282,13 @@ class LabView:
         ax.set_ylabel("y, north (m)")
         ax.legend(loc="lower left", fontsize=7, ncol=3, framealpha=0.9)
 
-    @property
-    def artists(self) -> list:
-        """What :meth:`show` changes and everything a full draw draws over it, in drawing
-        order: a panel redraws only these over a cached picture of the rest (the arena's
-        limits are fixed). The frame, the title and the legend do not change, but are drawn
-        over the paths, so they are redrawn too."""
-        return _drawn_over(self.ax, [self.truth, self.estimate, self.robot, self.text])
+        self._blit = BlitList(ax, [self.truth, self.estimate, self.robot, self.text])
+
+    def blit_artists(self) -> list:
+        """What :meth:`show` changes and what a full draw paints over it there (the frame;
+        the legend when a path runs under it), in drawing order: a panel redraws only these
+        over a picture of the rest (the arena's limits are fixed)."""
+        return self._blit()
 
     def show(self, truth, estimate=None, text: str = "") -> None:
         """Draw a true path (N, 3), an optional estimate, the robot at the path's end."""
@@ -300,17 +301,6 @@ class LabView:
             self.estimate.set_data(estimate[:, 0], estimate[:, 1])
         self.robot.set_xy(_robot_outline(truth[-1]))
         self.text.set_text(text)
-
-
-def _drawn_over(ax, moving) -> list:
-    """``moving`` and every artist of ``ax`` that a full draw draws after the first of them,
-    in the full draw's order (by zorder, then as listed by ``get_children``, as
-    ``Axes.draw`` sorts them): redrawn in this order over a picture of the rest, they give
-    the full draw's pixels."""
-    order = sorted((a for a in ax.get_children() if a is not ax.patch),
-                   key=lambda artist: artist.get_zorder())
-    first = min(i for i, artist in enumerate(order) if any(artist is m for m in moving))
-    return order[first:]
 
 
 def _setup():
@@ -330,7 +320,7 @@ def _update(view: LabView, *, speed, lookahead, heading_gain, encoder, track) ->
         view.show(np.array([[1.5, -1.5, math.pi / 2]]), text=f"cannot run: {exc}")
     else:
         view.show(truth, estimate, text)
-    return view.artists  # the panel blits these
+    return view.blit_artists()  # the panel blits these
 
 
 @register("waypoints.lab")
