@@ -110,7 +110,9 @@ class Panel:
         canvas = self.figure.canvas
         if changed:
             artists = list(changed)
-            if self._blit != artists:  # first blitted draw: render everything else once
+            if self._blit != artists:  # a new list: render everything else once
+                for artist in self._blit or ():  # artists dropped from the list are static
+                    artist.set_animated(False)
                 for artist in artists:
                     artist.set_animated(True)
                 canvas.draw()
