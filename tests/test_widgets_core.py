@@ -81,3 +81,25 @@ def test_slider_values_cover_the_whole_range():
     assert slider_values(W.IntSlider(min=0, max=3), n=9) == [0, 1, 2, 3]
     assert slider_values(W.Checkbox()) == [False, True]
     assert slider_values(W.Dropdown(options=[("x", 1), ("y", 2)])) == [1, 2]
+
+
+def test_an_artist_dropped_from_the_blit_list_stays_visible():
+    def setup():
+        fig = Figure(figsize=(3, 2))
+        ax = fig.add_subplot()
+        ax.set_xlim(-1, 1)
+        ax.set_ylim(-1, 1)
+        (moving,) = ax.plot([-1, 1], [0, 0], color=(1, 0, 0), lw=4)
+        (fixed,) = ax.plot([-1, 1], [0.5, 0.5], color=(0, 0, 1), lw=4)
+        return fig, {"moving": moving, "fixed": fixed}
+
+    def update(state, a):
+        state["moving"].set_ydata([-a, -a])
+        return [state["moving"], state["fixed"]] if a < 0.5 else [state["moving"]]
+
+    panel = Panel({"a": W.FloatSlider(min=0.0, max=0.9, value=0.1)}, setup, update)
+    assert _blue_rows(panel).size > 0
+    panel.redraw(a=0.7)  # "fixed" leaves the list: it must now be part of the background
+    assert _blue_rows(panel).size > 0
+    panel.redraw(a=0.8)
+    assert _blue_rows(panel).size > 0
