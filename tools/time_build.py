@@ -53,7 +53,8 @@ def measure(clone: Path) -> tuple[list[tuple[str, float, str]], dict[str, int], 
         ("`make book`, set-up done (build from committed outputs)", ["make", "book"]),
         ("`make notebooks` (re-execute all, 2 at a time)", ["make", "notebooks"]),
         ("`make notebooks` again", ["make", "notebooks"]),
-        ("`make test` (all layers, set-up done)", ["make", "test"]),
+        ("`make test` (all layers, set-up done, on the re-executed notebooks)",
+         ["make", "test"]),
     ]
     layers: dict[str, int] = {}
     for label, command in steps:
