@@ -62,17 +62,22 @@ browser: $(STAMP)
 
 # Every layer runs even when an earlier one failed; the summary names the failed ones.
 test: $(STAMP)
-	@passed=(); failed=(); \
+	@passed=(); failed=(); log=$$(mktemp); \
 	for layer in $(LAYERS); do \
 	  echo; echo "================ make test: $$layer ================"; \
 	  start=$$(date +%s); \
-	  if $(MAKE) --no-print-directory $$layer; then passed+=($$layer); \
+	  if $(MAKE) --no-print-directory $$layer 2>&1 | tee -a $$log; \
+	     test $${PIPESTATUS[0]} -eq 0; then passed+=($$layer); \
 	  else failed+=($$layer); fi; \
 	  echo "---------------- $$layer: $$(( $$(date +%s) - start )) s"; \
 	done; \
 	echo; echo "================ make test summary ================"; \
-	echo "passed: $${passed[*]:-none}"; echo "failed: $${failed[*]:-none}"; \
-	echo "layers: $${#passed[@]} passed, $${#failed[@]} failed"; \
+	echo "layers passed: $${passed[*]:-none}"; echo "layers failed: $${failed[*]:-none}"; \
+	summary=$$(grep -E '^=+ .*[0-9]+ (passed|failed|error).* in [0-9.]+s' $$log); \
+	npass=$$(echo "$$summary" | grep -oE '[0-9]+ passed' | awk '{s+=$$1} END {print s+0}'); \
+	nfail=$$(echo "$$summary" | grep -oE '[0-9]+ (failed|errors?)' | awk '{s+=$$1} END {print s+0}'); \
+	rm -f $$log; \
+	echo "tests: $$npass passed, $$nfail failed"; \
 	test $${#failed[@]} -eq 0
 
 notebooks: $(STAMP)
