@@ -87,7 +87,7 @@ serve: book
 	@echo "serving http://127.0.0.1:$(PORT)/ (Ctrl-C to stop)"
 	$(BIN)/python -m http.server --bind 127.0.0.1 --directory _build/html $(PORT)
 
-bench: $(STAMP)
+bench: book
 	$(BIN)/python benchmarks/run_all.py
 
 clean:
