@@ -25,7 +25,6 @@ from __future__ import annotations
 import argparse
 import datetime as _dt
 import os
-import platform
 import sys
 import time
 from pathlib import Path
@@ -37,7 +36,10 @@ from wheelkin.widgets import all_panels, slider_values
 
 BUDGET_MS = 50.0
 RESULTS = Path(__file__).with_name("RESULTS.md")
-BEGIN, END = "<!-- BEGIN panels -->", "<!-- END panels -->"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _results import cpu, markers, write_section  # noqa: E402
+
+BEGIN, END = markers("panels")
 
 
 def sweep(panel, points: int) -> list[float]:
@@ -98,15 +100,7 @@ def measure(repeat: int, points: int, only: list[str] | None = None) -> dict:
 
 
 def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:  # pragma: no cover
-        pass
-    return (f"{cpu}, {os.cpu_count()} logical CPUs; Python {platform.python_version()}, "
+    return (f"{cpu()}, "
             f"matplotlib {matplotlib.__version__} (Agg)")
 
 
@@ -160,14 +154,7 @@ def report(result: dict) -> str:
 
 
 def write(section: str) -> None:
-    text = RESULTS.read_text() if RESULTS.exists() else "# Benchmark results\n\n"
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        text = head + section.rstrip("\n") + tail
-    else:
-        text = text.rstrip("\n") + "\n\n" + section
-    RESULTS.write_text(text)
+    write_section("panels", section, RESULTS)
 
 
 def main(argv=None) -> int:

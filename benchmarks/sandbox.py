@@ -35,7 +35,6 @@ import argparse
 import datetime as _dt
 import math
 import os
-import platform
 import statistics
 import sys
 import time
@@ -49,7 +48,10 @@ from wheelkin.sandbox import LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER, RADON_
 
 DT = 1 / 240
 RESULTS = Path(__file__).with_name("RESULTS.md")
-BEGIN, END = "<!-- BEGIN sandbox -->", "<!-- END sandbox -->"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _results import cpu, markers, write_section  # noqa: E402
+
+BEGIN, END = markers("sandbox")
 
 VEHICLES = [  # label, spec, constant twist, smooth time-varying twist (within friction)
     ("diff drive (Radon Ulzer)", RADON_ULZER, (0.4, 0.0, 0.3),
@@ -345,15 +347,7 @@ def measure_fidelity() -> list[dict]:
 
 
 def machine() -> str:
-    cpu = platform.processor() or platform.machine()
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                cpu = line.split(":", 1)[1].strip()
-                break
-    except OSError:  # pragma: no cover
-        pass
-    return (f"{cpu}, {os.cpu_count()} logical CPUs; Python {platform.python_version()}, "
+    return (f"{cpu()}, "
             f"pymunk {pymunk.version} (Chipmunk {pymunk.chipmunk_version.split('-')[0]})")
 
 
@@ -459,14 +453,7 @@ def report(result: dict) -> str:
 
 
 def write(section: str) -> None:
-    text = RESULTS.read_text(encoding="utf-8") if RESULTS.exists() else "# Benchmark results\n\n"
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        text = head + section.rstrip("\n") + tail
-    else:
-        text = text.rstrip("\n") + "\n\n" + section
-    RESULTS.write_text(text, encoding="utf-8")
+    write_section("sandbox", section, RESULTS)
 
 
 def main(argv=None) -> int:

@@ -45,7 +45,11 @@ from urllib.parse import unquote, urlsplit
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = Path(__file__).with_name("RESULTS.md")
-BEGIN, END = "<!-- BEGIN sizes -->", "<!-- END sizes -->"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _results import markers, write_section  # noqa: E402
+
+BEGIN, END = markers("sizes")
+
 BUDGET = 3_000_000  # bytes
 MB = 1e6
 
@@ -303,14 +307,7 @@ def report(result: dict) -> str:
 
 
 def write(section: str) -> None:
-    text = RESULTS.read_text(encoding="utf-8") if RESULTS.exists() else "# Benchmark results\n"
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        text = head + section.rstrip("\n") + tail
-    else:
-        text = text.rstrip("\n") + "\n\n" + section
-    RESULTS.write_text(text, encoding="utf-8")
+    write_section("sizes", section, RESULTS)
 
 
 def main(argv: list[str] | None = None) -> int:

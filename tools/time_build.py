@@ -29,7 +29,11 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "RESULTS.md"
-BEGIN, END = "<!-- BEGIN build -->", "<!-- END build -->"
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+from _results import markers, write_section  # noqa: E402
+
+BEGIN, END = markers("build")
+
 LAYER_TIME = re.compile(r"^-+ (\w+): (\d+) s$", re.MULTILINE)
 
 
@@ -104,14 +108,7 @@ def report(rows, layers, commit: str, before: str, after: str) -> str:
 
 
 def write(section: str) -> None:
-    text = RESULTS.read_text(encoding="utf-8") if RESULTS.exists() else "# Benchmark results\n"
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        text = head + section.rstrip("\n") + tail
-    else:
-        text = text.rstrip("\n") + "\n\n" + section
-    RESULTS.write_text(text, encoding="utf-8")
+    write_section("build", section, RESULTS)
 
 
 def main(argv: list[str] | None = None) -> int:
