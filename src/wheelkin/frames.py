@@ -66,6 +66,7 @@ __all__ = [
     "Twist",
     "compose",
     "firmware_pose_to_ours",
+    "fold_half_turn",
     "icr",
     "icr_array",
     "integrate_twist",
@@ -241,6 +242,29 @@ def wrap_angle(angle):
     r = np.minimum(r, math.pi)
     out = np.where(inside, a, r)
     return float(out) if out.ndim == 0 else out
+
+
+def fold_half_turn(angle: float) -> tuple[float, float]:
+    """A wheel's steering ``angle`` folded into :math:`(-\\pi/2, \\pi/2]`, and the sign its
+    rolling rate takes: a wheel turned half a turn rolls the same line backwards.
+
+    Used wherever a steered wheel is aimed along a direction (the sandbox's ideal commands,
+    the unified wheel model), so that no wheel is ever steered past a quarter turn.
+
+    Examples
+    --------
+    >>> fold_half_turn(0.5)
+    (0.5, 1.0)
+    >>> a, sign = fold_half_turn(math.pi - 0.5)
+    >>> round(a, 12), sign
+    (-0.5, -1.0)
+    """
+    a = math.remainder(v.finite("angle", angle), 2 * math.pi)
+    if a > math.pi / 2:
+        return a - math.pi, -1.0
+    if a <= -math.pi / 2:
+        return a + math.pi, -1.0
+    return a, 1.0
 
 
 def point_velocity(twist, point):

@@ -94,7 +94,7 @@ import numpy as np
 
 from wheelkin import _validate as v
 from wheelkin import rover
-from wheelkin.frames import Twist
+from wheelkin.frames import Twist, fold_half_turn
 from wheelkin.mecanum import ROLLER_SIGNS, MecanumGeometry
 from wheelkin.mecanum import WHEEL_NAMES as MECANUM_WHEEL_NAMES
 from wheelkin.units import INCH
@@ -516,16 +516,6 @@ def body_twist(wheels, rates) -> np.ndarray:
     return (phi[..., measured] * radii) @ pinv.T + 0.0
 
 
-def _fold(angle: float) -> tuple[float, float]:
-    """``angle`` folded into (-pi/2, pi/2], and the sign of the rolling rate it implies."""
-    a = math.remainder(angle, 2 * math.pi)
-    if a > math.pi / 2:
-        return a - math.pi, -1.0
-    if a <= -math.pi / 2:
-        return a + math.pi, -1.0
-    return a, 1.0
-
-
 def steer_for_twist(wheels, twist) -> tuple[WheelConstraint, ...]:
     r"""The wheels with every steered wheel and caster turned to roll along its contact
     velocity, so that the twist leaves them no sideways slip.
@@ -569,7 +559,7 @@ def steer_for_twist(wheels, twist) -> tuple[WheelConstraint, ...]:
             if math.hypot(cx, cy) > 1e-12:
                 angle = math.atan2(cy, cx) - wh.heading
                 if wh.kind == "steered":
-                    delta = _fold(angle)[0]
+                    delta = fold_half_turn(angle)[0]
                 else:
                     delta = math.remainder(angle, 2 * math.pi)
                     delta = math.pi if delta <= -math.pi else delta

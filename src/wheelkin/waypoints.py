@@ -956,9 +956,9 @@ class FollowerController:
         self.log_estimate: list[tuple[float, float, float]] = []
         self.finish_time: float | None = None
 
-    def rates(self, speed: float, yaw_rate: float) -> tuple[float, float]:
-        """Left and right wheel rates (rad/s) for a body twist, within ``max_wheel_rate``."""
-        left, right = wheel_speeds(speed, yaw_rate, self.track_width)
+    def _cap(self, left: float, right: float) -> tuple[float, float]:
+        """Wheel surface speeds (m/s) to rates (rad/s), both scaled down together (the
+        curvature kept) so that neither exceeds ``max_wheel_rate``."""
         left, right = left / self.wheel_radius, right / self.wheel_radius
         if self.max_wheel_rate is not None:
             biggest = max(abs(left), abs(right))
@@ -966,6 +966,11 @@ class FollowerController:
                 left, right = (left * self.max_wheel_rate / biggest,
                                right * self.max_wheel_rate / biggest)
         return left, right
+
+    def rates(self, speed: float, yaw_rate: float) -> tuple[float, float]:
+        """Left and right wheel rates (rad/s) for a body twist, within ``max_wheel_rate``."""
+        left, right = wheel_speeds(speed, yaw_rate, self.track_width)
+        return self._cap(left, right)
 
     def __call__(self, t: float, world=None) -> None:
         if t < self._next_tick - 1e-12:
@@ -1017,10 +1022,4 @@ class FollowerController:
         if self.follower.done and self.finish_time is None:
             self.finish_time = float(t)
         left, right = _wheel_speeds_unchecked(speed, yaw_rate, self.track_width)
-        left, right = left / self.wheel_radius, right / self.wheel_radius
-        if self.max_wheel_rate is not None:
-            biggest = max(abs(left), abs(right))
-            if biggest > self.max_wheel_rate:
-                left, right = (left * self.max_wheel_rate / biggest,
-                               right * self.max_wheel_rate / biggest)
-        return left, right
+        return self._cap(left, right)

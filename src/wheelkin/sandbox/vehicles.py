@@ -55,6 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from wheelkin import _validate as V
+from wheelkin.frames import fold_half_turn
 
 __all__ = [
     "GRAVITY",
@@ -540,16 +541,6 @@ def rover(
     return _finish(name, mass, inertia, body, wheels, **kwargs)
 
 
-def _wrap_half(angle: float) -> tuple[float, float]:
-    """``angle`` folded into (-pi/2, pi/2], and the sign (+1/-1) the rolling rate takes."""
-    a = math.remainder(angle, 2 * math.pi)
-    if a > math.pi / 2:
-        return a - math.pi, -1.0
-    if a <= -math.pi / 2:
-        return a + math.pi, -1.0
-    return a, 1.0
-
-
 def ideal_commands(spec: VehicleSpec, twist, steering=None) -> tuple[np.ndarray, np.ndarray]:
     """Wheel rates (and steering) of the ideal kinematic model for a body twist.
 
@@ -623,7 +614,7 @@ def _ideal(table: tuple, vx: float, vy: float, w: float, current: tuple
             if speed < 1e-12:
                 sign, speed = 1.0, 0.0
             else:
-                angles[slot], sign = _wrap_half(math.atan2(cy, cx) - h)
+                angles[slot], sign = fold_half_turn(math.atan2(cy, cx) - h)
             rates.append(sign * speed / r)
         elif kind == "fixed":
             rates.append((ex * cx + ey * cy) / r)

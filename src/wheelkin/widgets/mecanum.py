@@ -341,6 +341,20 @@ def _message_axes(fig):
     return fig.text(0.02, 0.02, "", fontsize=8, family="monospace", va="bottom")
 
 
+def _floor_axes(bottom: float):
+    """The panels' figure: a 10 m x 10 m floor around the start, metres, equal scale, with
+    ``bottom`` of the figure left free for the panel's text."""
+    fig, ax = plt.subplots(figsize=(5, 4.6), dpi=72)
+    fig.subplots_adjust(bottom=bottom)
+    ax.set_aspect("equal")
+    ax.grid(True, lw=0.4, alpha=0.5)
+    ax.set_xlim(-5, 5)
+    ax.set_ylim(-5, 5)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    return fig, ax
+
+
 @register("mecanum.wheel_rates")
 def wheel_rates_panel() -> Panel:
     """Four wheel-rate sliders (rad/s); the predicted path over 2 s and the speed verdict."""
@@ -350,14 +364,7 @@ def wheel_rates_panel() -> Panel:
                 for name, value in zip(WHEEL_NAMES, (10.0, 40.0, 40.0, 10.0), strict=True)}
 
     def setup():
-        fig, ax = plt.subplots(figsize=(5, 4.6), dpi=72)
-        fig.subplots_adjust(bottom=0.27)
-        ax.set_aspect("equal")
-        ax.grid(True, lw=0.4, alpha=0.5)
-        ax.set_xlim(-5, 5)
-        ax.set_ylim(-5, 5)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
+        fig, ax = _floor_axes(bottom=0.27)
         ax.set_title(f"predicted path over {duration:g} s", fontsize=10)
         start = draw_mecanum(ax, g, (0, 0, 0), color="0.5", alpha=0.5, rollers=False)
         (path,) = ax.plot([], [], "C0-", lw=1.5)
@@ -416,14 +423,7 @@ def waypoint_panel() -> Panel:
     }
 
     def setup():
-        fig, ax = plt.subplots(figsize=(5, 4.6), dpi=72)
-        fig.subplots_adjust(bottom=0.2)
-        ax.set_aspect("equal")
-        ax.grid(True, lw=0.4, alpha=0.5)
-        ax.set_xlim(-5, 5)
-        ax.set_ylim(-5, 5)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
+        fig, ax = _floor_axes(bottom=0.2)
         ghosts = [draw_mecanum(ax, g, (0, 0, 0), color="0.5", alpha=0.35, rollers=False)
                   for _ in range(4)]
         (path,) = ax.plot([], [], "C0-", lw=1.5)
@@ -470,14 +470,7 @@ def circle_panel() -> Panel:
     }
 
     def setup():
-        fig, ax = plt.subplots(figsize=(5, 4.6), dpi=72)
-        fig.subplots_adjust(bottom=0.22)
-        ax.set_aspect("equal")
-        ax.grid(True, lw=0.4, alpha=0.5)
-        ax.set_xlim(-5, 5)
-        ax.set_ylim(-5, 5)
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
+        fig, ax = _floor_axes(bottom=0.22)
         (path,) = ax.plot([], [], "C0-", lw=1.5)
         ghosts = [draw_mecanum(ax, g, (0, 0, 0), color="0.5", alpha=0.35, rollers=False)
                   for _ in range(7)]
