@@ -6,7 +6,13 @@ PYTHON ?= python3
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+LAB_STAMP := $(VENV)/.installed-lab
 PORT ?= 8000
+# `make lab`: JupyterLab's port on 127.0.0.1, and extra arguments (e.g. a fixed token).
+LAB_PORT ?= 8888
+LAB_ARGS ?=
+# The notebooks of the book, in reading order, from _toc.yml (nested sections included).
+TOC_NOTEBOOKS = $(shell $(BIN)/python tools/book_pages.py --notebooks)
 # Guard for `make notebooks` (whole run, seconds); the budget is 5 minutes on 2 cores.
 NOTEBOOKS_TIMEOUT ?= 900
 # Every test run: no pytest cache, the summary of skips/failures at the end.
@@ -18,13 +24,14 @@ NB_ENV := PYTHONHASHSEED=0 MPLBACKEND=module://matplotlib_inline.backend_inline 
 
 LAYERS := lint unit nbval book browser
 
-.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean
+.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean lab
 
 help:
 	@echo "make book       build the HTML book into _build/html (set-up included)"
 	@echo "make test       ruff, library tests + doctests, strict nbval, book build, browser tests"
 	@echo "make notebooks  re-execute every notebook in place, deterministically"
 	@echo "make serve      build, then serve _build/html on http://127.0.0.1:$(PORT)"
+	@echo "make lab        JupyterLab (pinned, with jupyterlab-myst) in notebooks/ on 127.0.0.1:$(LAB_PORT)"
 	@echo "make bench      run every benchmark (benchmarks/run_all.py)"
 	@echo "make clean      remove build output and caches"
 
@@ -36,6 +43,20 @@ $(STAMP): requirements.txt pyproject.toml
 	touch $(STAMP)
 
 setup: $(STAMP)
+
+# JupyterLab and jupyterlab-myst (requirements-lab.txt), on top of the book's stack.
+$(LAB_STAMP): $(STAMP) requirements-lab.txt
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check -r requirements-lab.txt
+	$(BIN)/python -m pip check
+	$(BIN)/jupyter labextension list 2>&1 | grep -Eq 'jupyterlab-myst v[0-9.]+ .*enabled.*OK' \
+	  || { echo "jupyterlab-myst is not enabled and compatible in JupyterLab"; exit 1; }
+	touch $(LAB_STAMP)
+
+# The notebooks as the book shows them: MyST renders (jupyterlab-myst), no browser is opened.
+# As root (a container, CI) Jupyter refuses to start without --allow-root.
+lab: $(LAB_STAMP)
+	cd notebooks && ../$(BIN)/jupyter lab --ip=127.0.0.1 --port=$(LAB_PORT) --no-browser \
+	  $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
 # JavaScript for the offline site (MathJax, require.js, widget manager) from package.json.
 vendor: $(STAMP)
@@ -53,12 +74,13 @@ unit: $(STAMP)
 
 nbval: $(STAMP)
 	$(NB_ENV) PYTHONPATH=tools $(PYTEST) -p nbval_jupyter_history \
-	  --nbval notebooks -n 2 --dist loadfile --nbval-current-env \
+	  --nbval $(TOC_NOTEBOOKS) -n 2 --dist loadfile --nbval-current-env \
 	  --nbval-sanitize-with tools/nbval_sanitize.cfg --nbval-cell-timeout 300 \
 	  -o addopts="-ra" -o testpaths=notebooks
 
-browser: $(STAMP)
-	$(PYTEST) tests/browser -o addopts="-ra" --timeout 900
+# The browser layer also starts `make lab`'s JupyterLab once (tests/test_lab.py).
+browser: $(STAMP) $(LAB_STAMP)
+	$(PYTEST) tests/browser tests/test_lab.py -o addopts="-ra" --timeout 900
 
 # Every layer runs even when an earlier one failed; the summary names the failed ones.
 test: $(STAMP)
@@ -81,7 +103,7 @@ test: $(STAMP)
 	test $${#failed[@]} -eq 0
 
 notebooks: $(STAMP)
-	timeout $(NOTEBOOKS_TIMEOUT) $(BIN)/python tools/execute_notebooks.py notebooks/[0-9][0-9]_*.ipynb
+	timeout $(NOTEBOOKS_TIMEOUT) $(BIN)/python tools/execute_notebooks.py $(TOC_NOTEBOOKS)
 
 serve: book
 	@echo "serving http://127.0.0.1:$(PORT)/ (Ctrl-C to stop)"

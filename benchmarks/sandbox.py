@@ -44,7 +44,14 @@ import numpy as np
 import pymunk
 from scipy.integrate import solve_ivp
 
-from wheelkin.sandbox import LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER, RADON_ULZER, World
+from wheelkin.sandbox import (
+    LAB_ROBOT,
+    MECANUM_ROBOT,
+    OPEN_SOURCE_ROVER,
+    RADON_ULZER,
+    RC_CAR,
+    World,
+)
 
 DT = 1 / 240
 RESULTS = Path(__file__).with_name("RESULTS.md")
@@ -63,6 +70,9 @@ VEHICLES = [  # label, spec, constant twist, smooth time-varying twist (within f
                 0.2 * math.sin(0.2 * t))),
     ("six-wheel rover (OSR)", OPEN_SOURCE_ROVER, (0.4, 0.0, 0.4 / 1.2),  # steers every step
      lambda t: (0.4 + 0.08 * math.sin(0.5 * t), 0.0, 0.33 + 0.1 * math.sin(0.3 * t))),
+    ("car (1/10, ideal Ackermann)", RC_CAR, (0.8, 0.0, 0.8 / 1.2),  # steers every step
+     lambda t: (0.8 + 0.1 * math.sin(0.5 * t), 0.0,
+                (0.8 + 0.1 * math.sin(0.5 * t)) / (1.5 + 0.5 * math.sin(0.2 * t)))),
 ]
 
 
@@ -126,12 +136,14 @@ def slip_case(steps: int) -> float:
     return time.perf_counter() - start
 
 
-def measure(repeat: int, seconds: float) -> dict:
+def measure(repeat: int, seconds: float, only: str | None = None) -> dict:
     steps = round(seconds / DT)
     rows = []
     load_before = os.getloadavg()
     bares = []
     for label, spec, twist, twist_of_t in VEHICLES:
+        if only and only not in label:
+            continue
         for case in ("constant", "varying"):
             rates, walls, errors = [], [], []
             for _ in range(repeat):
@@ -147,12 +159,13 @@ def measure(repeat: int, seconds: float) -> dict:
                 walls.append(wall)
             rows.append((label, case, rates, walls, max(errors) if errors else None))
     rates, walls = [], []
-    for _ in range(repeat):
+    for _ in range(repeat if not only else 0):
         bares.append(bare_pymunk(steps))
         wall = slip_case(steps)
         rates.append(seconds / wall)
         walls.append(wall)
-    rows.append(("skid steer (lab robot)", "slip (turning)", rates, walls, None))
+    if rates:
+        rows.append(("skid steer (lab robot)", "slip (turning)", rates, walls, None))
     bare = min(bares)
     rows = [(label, case, rates, [w / bare for w in walls], err)
             for label, case, rates, walls, err in rows]
@@ -178,9 +191,12 @@ GEOMETRY = {
     "rover": (0.06, {"LF": (10.5 * INCH, 7.254 * INCH), "LM": (0.0, 10.073 * INCH),
                      "LB": (-10.5 * INCH, 7.254 * INCH), "RF": (10.5 * INCH, -7.254 * INCH),
                      "RM": (0.0, -10.073 * INCH), "RB": (-10.5 * INCH, -7.254 * INCH)}),
+    # The 1/10 car: L = 0.33 m, W = 0.27 m, r = 0.05 m; reference point the rear-axle midpoint.
+    "car": (0.05, {"FL": (0.33, 0.135), "FR": (0.33, -0.135), "RL": (0.0, 0.135),
+                   "RR": (0.0, -0.135)}),
 }
 SPECS = {"diff drive": RADON_ULZER, "skid steer": LAB_ROBOT, "mecanum": MECANUM_ROBOT,
-         "rover": OPEN_SOURCE_ROVER}
+         "rover": OPEN_SOURCE_ROVER, "car": RC_CAR}
 
 
 #: The mecanum rollers touching the ground, from the wheel's axle (X arrangement, 45 deg).
@@ -244,6 +260,34 @@ def _rover_radius(t):
     return 1.5 + 0.5 * math.sin(0.2 * t)
 
 
+CAR_L = GEOMETRY["car"][1]["FL"][0]
+
+
+def car_commands(v, delta):
+    """Car at rear-axle speed v and bicycle steering delta: wheel rates (FL, FR, RL, RR) and
+    steering (FL, FR). The turning centre is at (0, R), R = L / tan(delta); a wheel at (x, y)
+    is steered to atan(x / (R - y)) and rolls at w |ICR - p| / r (the free fronts' rates are
+    not commands; they are given their rolling rates)."""
+    r, wheels = GEOMETRY["car"]
+    if delta == 0.0:
+        return [v / r] * 4, [0.0, 0.0]
+    radius = CAR_L / math.tan(delta)
+    w = v / radius
+    rates = [w * math.hypot(x, radius - y) / r * math.copysign(1.0, v * radius)
+             for x, y in wheels.values()]
+    rates[2:] = [w * (radius - y) / r for x, y in list(wheels.values())[2:]]
+    steer = [math.atan(x / (radius - y)) for x, y in list(wheels.values())[:2]]
+    return rates, steer
+
+
+def _car_speed(t):
+    return 0.8 + 0.1 * math.sin(0.5 * t)
+
+
+def _car_steering(t):
+    return 0.3 * math.sin(0.3 * t)
+
+
 def _set(robot, rates, steering=None):
     if steering is not None:
         robot.set_steering(steering)
@@ -280,6 +324,15 @@ FIDELITY = [
      OPEN_SOURCE_ROVER,
      lambda t: (_rover_speed(t), 0.0, _rover_speed(t) / _rover_radius(t)),
      lambda robot, t: _set(robot, *rover_commands(_rover_speed(t), _rover_radius(t)))),
+    # The car is commanded as a car: rear-axle speed v and bicycle steering delta, every
+    # wheel at its ideal Ackermann angle and rate; the reference is the bicycle model,
+    # twist (v, 0, v tan(delta) / L).
+    ("car (1/10, ideal Ackermann)", "constant: v 0.8 m/s, R 1.2 m", RC_CAR,
+     (0.8, 0.0, 0.8 / 1.2),
+     lambda robot, t: _set(robot, *car_commands(0.8, math.atan(CAR_L / 1.2)))),
+    ("car (1/10, ideal Ackermann)", "varying: v 0.8 ± 0.1 m/s, δ 0 ± 0.3 rad", RC_CAR,
+     lambda t: (_car_speed(t), 0.0, _car_speed(t) * math.tan(_car_steering(t)) / CAR_L),
+     lambda robot, t: _set(robot, *car_commands(_car_speed(t), _car_steering(t)))),
 ]
 
 
@@ -336,10 +389,12 @@ def fidelity_case(spec, twist, command, dt: float) -> dict:
     return out
 
 
-def measure_fidelity() -> list[dict]:
+def measure_fidelity(only: str | None = None) -> list[dict]:
     check_geometry()
     rows = []
     for label, what, spec, twist, command in FIDELITY:
+        if only and only not in label:
+            continue
         runs = {dt: fidelity_case(spec, twist, command, dt) for dt in FIDELITY_DTS}
         rows.append({"label": label, "command": what, "varying": callable(twist),
                      "runs": runs})
@@ -437,7 +492,8 @@ def report(result: dict) -> str:
             f"| {label} | {case} | {max(rates):.0f} / {statistics.median(rates):.0f} | "
             f"{min(ratios):.1f}x / {statistics.median(ratios):.1f}x | {err_text} |"
         )
-    worst = min(statistics.median(r[2]) for r in result["rows"][:-1])
+    no_slip = [r for r in result["rows"] if r[1] != "slip (turning)"]
+    worst = min(statistics.median(r[2]) for r in no_slip)
     lines += [
         "",
         f"Budget: ≥ 100 simulated s per wall s for every vehicle in the no-slip regime. "
@@ -461,12 +517,15 @@ def main(argv=None) -> int:
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--no-write", action="store_true")
+    parser.add_argument("--only", default=None,
+                        help="only the vehicles whose label contains this text (e.g. car); "
+                             "prints the rows and writes nothing")
     args = parser.parse_args(argv)
-    result = measure(args.repeat, args.seconds)
-    result["fidelity"] = measure_fidelity()
+    result = measure(args.repeat, args.seconds, args.only)
+    result["fidelity"] = measure_fidelity(args.only)
     section = report(result)
     print(section)
-    if not args.no_write:
+    if not args.no_write and not args.only:
         write(section)
     return 0
 

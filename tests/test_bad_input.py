@@ -230,3 +230,271 @@ def test_scalar_answers_are_not_asked_about_swapped_wheels():
     # and every kind is exercised somewhere
     kinds = {kind for name in EXERCISES for kind, _ in _wrong_answers(EXERCISES[name]).values()}
     assert {"sign", "swapped", "units", "nan", "raised", "shape", "not-written"} <= kinds
+
+
+# ----------------------------------------------------------------------------- the library
+# Every public callable of the formula modules, called with one argument at a time replaced by
+# a bad value. Each call must raise ValueError or TypeError whose message names a parameter of
+# the callable, or return finite numbers; a boolean where a number is meant must be refused.
+
+import dataclasses  # noqa: E402
+import importlib  # noqa: E402
+import inspect  # noqa: E402
+import typing  # noqa: E402
+
+#: Callables that read a sandbox vehicle (the sandbox is validated on its own, not here).
+SANDBOX_BOUND = {"unified.from_sandbox"}
+FORMULA_MODULES = ("units", "frames", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
+                   "follower", "unified")
+
+
+def _good_values() -> dict:
+    """A valid value for each parameter name of the formula modules' public callables."""
+    from wheelkin import mecanum, rover, unified, waypoints
+    from wheelkin.follower import KinematicSkidSteer, PathFollower
+
+    segs = waypoints.plan_segments([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
+    cmds = waypoints.schedule(segs, 0.04, 0.06)
+    return {
+        # units
+        "value": 1.5, "unit": "m", "from_unit": "m", "to_unit": "mm", "steps": 100.0,
+        "counts_per_motor_rev": 12.0, "gear_ratio": 75.81, "wheel_circumference": 0.113,
+        "steps_per_m": 8043.7, "steps_per_rev": 360.0,
+        # frames
+        "x": 0.5, "y": -0.25, "theta": 0.3, "vx": 0.4, "vy": -0.1, "omega": 0.2,
+        "angle": 2.0, "twist": (0.4, -0.1, 0.2), "twists": [[0.4, -0.1, 0.2]] * 3,
+        "pose": (0.1, 0.2, 0.3), "pose0": (0.0, 0.0, 0.0), "pose_from": (0.0, 0.0, 0.1),
+        "pose_to": (1.0, 0.5, 0.4), "delta": (0.3, 0.1, 0.2), "point": (0.2, 0.1),
+        "points": [[0.2, 0.1], [-0.3, 0.0]], "dt": 0.1, "radius_in": 30.0, "radius_m": 2.0,
+        "centre_speed_in_per_s": 10.0, "Vx_ftps": 1.0, "Vy_ftps": 0.5, "psi": 0.3,
+        "X_ft": 1.0, "Y_ft": 2.0, "X_mm": 100.0, "Y_mm": 200.0,
+        # rover
+        "radius": 30.0, "speed": 10.0, "speed_in_per_s": 10.0, "geometry": None,
+        "straight_threshold": 250.0, "max_corner_angle": 0.785, "command": 40.0,
+        "mapping": "radius", "wheel_radius_in": 2.35, "v": 0.3,
+        "d1": 7.0, "d2": 10.0, "d3": 10.0, "d4": 10.0,
+        # mecanum
+        "wheel_radius": 0.05, "half_wheelbase": 0.2, "half_track": 0.15,
+        "roller_angle": 0.785, "wheel_rates": [1.0, 2.0, 3.0, 4.0], "accel_x": 0.5,
+        "accel_y": 0.5, "mu": 0.8, "gravity": 9.81, "max_speed": 2.0, "refuse": False,
+        "lap_time": 10.0, "t": 1.0, "heading": "rotating", "goal": (1.0, 1.0, 0.5),
+        "max_omega": 1.0, "max_rate": 20.0, "centre_of_rotation": (0.1, 0.0),
+        # diffdrive
+        "track_width": 0.3, "v_left": 0.2, "v_right": 0.4, "fl": 0.2, "fr": 0.3, "rl": 0.2,
+        "rr": 0.3, "v_steps_per_s": 1000.0, "omega_mrad_per_s": 500.0,
+        "v_linear_steps_per_s": 1000.0, "wheel_base_mm": 85, "values": [1, 2, 3], "bits": 16,
+        "numerator": [7, -7], "denominator": [2, 2], "method": "exact", "window": 0.1,
+        "min_steps": 2, "counts": [0, 5, 10, 15], "times": [0.0, 0.1, 0.2, 0.3],
+        "timeout": 1.0,
+        # odometry
+        "increments": [[10.0, 12.0], [8.0, 8.0]], "steps_per_mm": 8.0, "distance": 10.0,
+        "dtheta": 0.1, "segments": segs, "max_step_mm": 5.0, "travel_mm": [[1.0, 1.5]],
+        "delta_left": [0.1, 0.2], "delta_right": [0.12, 0.18], "covariance": np.eye(3) * 1e-4,
+        "k_left": 1e-4, "k_right": 1e-4, "runs": 5, "rng": 3, "cw_end": (0.1, 0.05),
+        "ccw_end": (0.08, -0.02), "side": 4.0,
+        # waypoints and follower
+        "waypoints": [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]], "arc_radius": 0.5,
+        "initial_heading": 0.0, "spacing": 0.05, "turn_step": 0.1, "half_axle": 0.06,
+        "wheel_rate": 7.5, "commands": cmds, "period": 0.064, "wheel_angles": [[0.0] * 4] * 3,
+        "walls": waypoints.LAB_WALLS, "path": [[0.0, 0.0], [1.0, 0.0]],
+        "lookahead": 0.15, "heading_gain": 4.0, "max_turn_rate": 2.0, "min_turn_rate": 0.2,
+        "heading_tolerance": 0.01, "approach_gain": 2.0, "min_speed": 0.02,
+        "robot": KinematicSkidSteer((0.0, 0.0, 0.0)), "switch": "time",
+        "follower": PathFollower(segs), "odometry_track_width": 0.3, "max_wheel_rate": 10.0,
+        "skid_factor": 1.5, "motor_time_constant": 0.05, "wheelbase": 0.1,
+        "name": "FL", "position": (0.1, 0.2), "driven_wheels": None,
+        # unified
+        "wheels": unified.mecanum_wheels(mecanum.EXAMPLE_GEOMETRY), "rates": [1.0] * 4,
+        "wheel": unified.mecanum_wheels(mecanum.EXAMPLE_GEOMETRY)[0], "caster": True,
+        "casters": True, "caster_offset": 0.05, "steering": None,
+        "_rover_geometry": rover.OSR_GEOMETRY, "_mecanum_geometry": mecanum.EXAMPLE_GEOMETRY,
+    }
+
+
+BAD_VALUES = {
+    "nan": math.nan, "+inf": math.inf, "-inf": -math.inf, "None": None, "str": "abc",
+    "True": True, "empty": [], "wrong-shape": np.ones((2, 2, 2)), "subnormal": 5e-324,
+    "huge": 1e300,
+}
+
+
+def _public_callables():
+    for mod_name in FORMULA_MODULES:
+        mod = importlib.import_module(f"wheelkin.{mod_name}")
+        for name in mod.__all__:
+            obj = getattr(mod, name)
+            if not callable(obj) or (isinstance(obj, type) and issubclass(obj, tuple)):
+                continue  # constants; NamedTuple results (outputs, not inputs)
+            if isinstance(obj, type) and typing.Protocol in obj.__mro__:
+                continue  # a Protocol describes, it is not called
+            if getattr(obj, "__module__", "") != mod.__name__:
+                continue  # a re-export: swept where it is defined
+            if f"{mod_name}.{name}" in SANDBOX_BOUND:
+                continue
+            yield f"{mod_name}.{name}", obj
+
+
+def _finite_leaves(out, allow_inf: bool = False, depth: int = 0) -> bool:
+    """No NaN anywhere in ``out``, and no infinity unless ``allow_inf`` (a straight line's
+    radius, the ICR of a pure translation: an infinity the valid call also returns)."""
+    if depth > 4 or out is None or isinstance(out, str | bool):
+        return True
+    if dataclasses.is_dataclass(out) and not isinstance(out, type):
+        return all(_finite_leaves(getattr(out, f.name), allow_inf, depth + 1)
+                   for f in dataclasses.fields(out))
+    if isinstance(out, dict):
+        return all(_finite_leaves(v, allow_inf, depth + 1) for v in out.values())
+    if isinstance(out, tuple | list):
+        return all(_finite_leaves(v, allow_inf, depth + 1) for v in out)
+    if isinstance(out, np.ndarray | float | int | np.number):
+        arr = np.asarray(out)
+        if arr.dtype.kind not in "fc":
+            return True
+        return bool(np.all(~np.isnan(arr) if allow_inf else np.isfinite(arr)))
+    return True  # an object (a controller, a robot): its methods are tested elsewhere
+
+
+def _good_call(qualname: str, fn, good: dict) -> dict:
+    """Keyword arguments for a valid call of ``fn`` (required parameters only, plus the
+    geometry a module's functions take)."""
+    kwargs = {}
+    for p in inspect.signature(fn).parameters.values():
+        if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD):
+            continue
+        if p.name == "geometry":
+            if qualname.startswith("mecanum.") or qualname.startswith("unified."):
+                kwargs[p.name] = good["_mecanum_geometry"]
+            elif qualname.startswith("rover."):
+                kwargs[p.name] = good["_rover_geometry"]
+            continue
+        if p.default is p.empty:
+            kwargs[p.name] = OVERRIDES.get(qualname, {}).get(p.name, good.get(p.name, KeyError))
+            if kwargs[p.name] is KeyError:
+                raise KeyError(p.name)
+    return kwargs
+
+
+#: Calls whose valid arguments differ from the shared table.
+OVERRIDES = {
+    "rover.RoverGeometry": {"d1": 7.0, "d2": 10.0, "d3": 10.0, "d4": 10.0},
+    "rover.radius_to_command": {"radius": 100.0},
+    "rover.wheel_commands": {"v": 0.3, "omega": 0.1, "geometry": None},
+    "units.steps_to_distance": {"steps": 100.0, "steps_per_m": 8043.7},
+    "units.distance_to_steps": {"distance": 0.5, "steps_per_m": 8043.7},
+    "diffdrive.body_twist_steps": {"left": 1000.0, "right": 1200.0, "wheel_base_mm": 85.0,
+                                   "steps_per_m": 8043.0},
+    "odometry.monte_carlo_poses": {"rng": None},
+    "odometry.propagate_covariance": {"delta_left": 0.1, "delta_right": 0.12},
+    "odometry.step_jacobians": {"delta_left": 0.1, "delta_right": 0.12},
+    "waypoints.Segment": {"kind": "straight", "start": (0.0, 0.0, 0.0),
+                          "end": (1.0, 0.0, 0.0), "length": 1.0, "heading_change": 0.0,
+                          "radius": math.inf},
+    "waypoints.WheelCommand": {"segment": None, "left_rate": 1.0, "right_rate": 1.0,
+                               "duration": 1.0, "speed": 0.04, "yaw_rate": 0.0},
+    "follower.WheelLayout": {"driven_wheels": None},
+    "unified.rover_wheels": {"geometry": None},
+    "unified.sliding_row": {"wheel": None},
+    "mecanum.circle_twist": {"radius": 1.0, "lap_time": 10.0},
+    "mecanum.circle_speed": {"radius": 1.0, "lap_time": 10.0},
+    "frames.rover_twist": {"radius_in": 30.0, "centre_speed_in_per_s": 10.0},
+    "diffdrive.speed_from_counts": {"counts": [0, 5, 10, 15], "times": [0.0, 0.1, 0.2, 0.3],
+                                    "window": 0.15},
+    "diffdrive.wrap_int": {"values": [1, 2, 3]},
+    "diffdrive.c_divide": {"numerator": 7, "denominator": 2},
+    "diffdrive.DiffDriveConstants": {"wheel_base_mm": 85, "steps_per_m": 8043},
+    "diffdrive.q16_turn_factor": {"wheel_base_mm": 85, "steps_per_m": 8043},
+    "diffdrive.int32_omega_limit": {"wheel_base_mm": 85, "steps_per_m": 8043},
+    "diffdrive.speed_resolution": {"window": 0.1, "steps_per_m": 8043.0},
+    "diffdrive.time_to_count": {"min_steps": 2, "speed": 0.1, "steps_per_m": 8043.0},
+    "odometry.plan_wheel_travel": {"segments": [(100.0, 0.0), (0.0, 1.0)],
+                                   "wheel_base_mm": 85.0, "max_step_mm": 5.0},
+    "odometry.encoder_increments": {"travel_mm": [[1.0, 1.5], [2.0, 2.0]],
+                                    "steps_per_mm": 8.0},
+    "unified.skid_steer_wheels": {"half_track": 0.06, "half_wheelbase": 0.05},
+    "unified.diff_drive_wheels": {"track_width": 0.3, "wheel_radius": 0.05},
+}
+
+
+def _resolve(qualname: str, kwargs: dict) -> dict:
+    """Fill the overrides that need objects: a geometry of the right kind, a segment, ..."""
+    from wheelkin import mecanum, odometry, rover, unified, waypoints
+    from wheelkin.follower import DrivenWheel, WheelLayout
+
+    if qualname == "rover.wheel_commands":
+        kwargs["geometry"] = rover.OSR_GEOMETRY_SI
+    if qualname == "unified.rover_wheels":
+        kwargs["geometry"] = rover.OSR_GEOMETRY
+    if qualname == "odometry.monte_carlo_poses":
+        kwargs["rng"] = np.random.default_rng(0)
+        kwargs["runs"] = 5
+    if qualname == "waypoints.WheelCommand":
+        kwargs["segment"] = waypoints.plan_segments([[0, 0], [1, 0]])[0]
+    if qualname == "follower.WheelLayout":
+        kwargs["driven_wheels"] = (DrivenWheel("L", (0.0, 0.1)), DrivenWheel("R", (0.0, -0.1)))
+    if qualname == "unified.sliding_row":
+        kwargs["wheel"] = unified.diff_drive_wheels(0.3, 0.05)[0]
+    del mecanum, odometry
+    return kwargs
+
+
+def _calls():
+    good = _good_values()
+    for qualname, fn in _public_callables():
+        try:
+            kwargs = _resolve(qualname, _good_call(qualname, fn, good)
+                              | OVERRIDES.get(qualname, {}))
+        except KeyError as exc:
+            yield pytest.param(qualname, fn, None, None, id=f"{qualname}-no-valid-call",
+                               marks=pytest.mark.xfail(reason=f"no valid value for {exc}",
+                                                       strict=True))
+            continue
+        for param in kwargs:
+            for label in BAD_VALUES:
+                yield pytest.param(qualname, fn, kwargs, (param, label),
+                                   id=f"{qualname}-{param}-{label}")
+
+
+CALLS = list(_calls())
+
+
+def test_every_public_callable_has_a_valid_call():
+    good = _good_values()
+    broken = []
+    for qualname, fn in _public_callables():
+        try:
+            kwargs = _resolve(qualname, _good_call(qualname, fn, good)
+                              | OVERRIDES.get(qualname, {}))
+            out = fn(**kwargs)
+        except Exception as exc:  # noqa: BLE001 - reported below
+            broken.append(f"{qualname}: {type(exc).__name__}: {exc}")
+            continue
+        assert _finite_leaves(out, allow_inf=True), qualname
+    assert not broken, "\n".join(broken)
+
+
+@pytest.mark.parametrize(("qualname", "fn", "kwargs", "bad"), CALLS)
+def test_bad_argument_gets_a_clean_error_or_a_finite_result(qualname, fn, kwargs, bad):
+    param, label = bad
+    value = BAD_VALUES[label]
+    good_value = kwargs[param]
+    args = dict(kwargs) | {param: value}
+    names = list(inspect.signature(fn).parameters)
+    # an infinity the valid call returns too, or one passed in where the function documents
+    # it (a straight line's radius) and hands it back, is not a leak; a NaN always is
+    infinite_anyway = not _finite_leaves(fn(**kwargs)) or label in ("+inf", "-inf")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            out = fn(**args)
+        except (ValueError, TypeError) as exc:
+            message = str(exc)
+            assert any(n in message for n in names), (
+                f"{qualname}({param}={label}) raised {type(exc).__name__} naming no "
+                f"parameter of {names}: {message}")
+            return
+    assert _finite_leaves(out, infinite_anyway), (
+        f"{qualname}({param}={label}) returned non-finite {out!r}")
+    number_meant = isinstance(good_value, float | int | np.floating) and not isinstance(
+        good_value, bool)
+    if label == "True" and number_meant:
+        pytest.fail(f"{qualname} accepted True as the number {param}")

@@ -469,11 +469,42 @@ def test_wheel_speed_view_flags_the_int32_overflow():
     assert view.bar_text[0].get_text().startswith("centre 1000 ")
 
 
+
+
+# --------------------------------------------------------------------------------------------
+# named results and desaturation (WPILib's DifferentialDriveWheelSpeeds.desaturate)
+
+def test_results_are_named_tuples_that_unpack_as_before():
+    ws = dd.wheel_speeds(0.2, 1.0, 0.085)
+    assert isinstance(ws, dd.WheelSpeeds) and isinstance(ws, tuple)
+    left, right = ws
+    assert (left, right) == (ws.left, ws.right) == pytest.approx((0.1575, 0.2425))
+    tw = dd.body_twist(left, right, 0.085)
+    assert tw.v == pytest.approx(0.2) and tw.omega == pytest.approx(1.0)
+    four = dd.skid_steer_wheel_speeds(0.5, 1.0, 0.12)
+    assert (four.fl, four.fr, four.rl, four.rr) == pytest.approx((0.44, 0.56, 0.44, 0.56))
+    assert dd.skid_steer_body_twist(*four, 0.12).omega == pytest.approx(1.0)
+
+
 @settings(max_examples=200)
-@given(st.floats(-50.0, 50.0), st.floats(-50.0, 50.0), st.floats(1e-3, 10.0))
-def test_unchecked_wheel_speeds_are_wheel_speeds_to_the_last_bit(v, omega, width):
-    fast = dd._wheel_speeds_unchecked(v, omega, width)
-    slow = dd.wheel_speeds(v, omega, width)
-    assert np.asarray(fast).tobytes() == np.asarray(slow, dtype=float).tobytes()
-    with pytest.raises(ValueError, match="track_width"):  # the public one still checks
-        dd.wheel_speeds(v, omega, -width)
+@given(st.floats(-10, 10), st.floats(-10, 10), st.floats(0.01, 20))
+def test_desaturate_is_wpilibs(left, right, limit):
+    biggest = max(abs(left), abs(right))
+    want = (left / biggest * limit, right / biggest * limit) if biggest > limit else (left,
+                                                                                       right)
+    got = dd.desaturate(left, right, limit)
+    assert got == pytest.approx(want, rel=1e-15, abs=1e-300)
+    assert max(abs(got.left), abs(got.right)) <= limit * (1 + 1e-15)
+    if biggest > 0 and got.left != 0:  # the ratio (the curvature) is kept
+        assert got.right / got.left == pytest.approx(right / left, rel=1e-12)
+
+
+def test_desaturate_vectorised_and_bad_input():
+    out = dd.desaturate([1.0, 4.0], [3.0, -1.0], 2.0)
+    np.testing.assert_allclose(out.left, [2 / 3, 2.0])
+    np.testing.assert_allclose(out.right, [2.0, -0.5])
+    for args, name in (((math.nan, 1.0, 2.0), "v_left"), ((1.0, "x", 2.0), "v_right"),
+                       ((1.0, 1.0, 0.0), "max_speed"), ((1.0, 1.0, True), "max_speed"),
+                       (([1.0, 2.0], [1.0, 2.0, 3.0], 2.0), "v_left")):
+        with pytest.raises(ValueError, match=name):
+            dd.desaturate(*args)

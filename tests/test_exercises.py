@@ -2,12 +2,14 @@
 
 A chapter's exercise is a code cell tagged ``exercise`` (the stub, which raises
 NotImplementedError) followed by a code cell tagged ``solution``; both define the function and
-end with ``check("chapter.name", fn)``. Each is executed in a fresh namespace after the
-chapter's first code cell (its imports), with matplotlib's Agg backend. The stub's check must
+end with ``check("chapter.name", fn)``. Each is executed in a fresh namespace after the first
+code cell (its imports) of the notebook that holds it (a chapter's notebook, or the section
+notebook of a chapter folder), with matplotlib's Agg backend. The stub's check must
 fail with a message and nothing may raise; the solution's check must pass.
 
-Every notebook present is a chapter, except those in ``NON_CHAPTER_NOTEBOOKS``
-(tools/book_pages.py), and a chapter has at least three exercises.
+Every chapter present (a notebook ``notebooks/NN_name.ipynb`` or a folder
+``notebooks/NN_name/``) is a chapter of the anatomy, except those in ``NON_CHAPTER_NOTEBOOKS``
+(tools/book_pages.py), and has at least three exercises over its notebooks.
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import chapter_notebooks, notebooks  # noqa: E402
+from book_pages import NON_CHAPTER_NOTEBOOKS, chapters, notebook_id, notebooks  # noqa: E402
 
 MIN_EXERCISES = 3
 CHECK_CALL = re.compile(r"""\bcheck\(\s*["']([\w.]+)["']""")
@@ -43,14 +45,14 @@ def _exercises(path: Path):
         if cell.cell_type != "code":
             continue
         if "exercise" in _tags(cell):
-            assert stub is None, (f"{path.name}: exercise cell {stub_index} has no solution cell "
+            assert stub is None, (f"{notebook_id(path)}: exercise cell {stub_index} has no solution cell "
                                   "(tagged `solution`) before the next exercise")
             stub, stub_index = cell.source, index
         elif "solution" in _tags(cell):
-            assert stub is not None, f"{path.name}: solution cell {index} follows no exercise"
+            assert stub is not None, f"{notebook_id(path)}: solution cell {index} follows no exercise"
             pairs.append((stub, cell.source, stub_index))
             stub = None
-    assert stub is None, f"{path.name}: exercise cell {stub_index} has no solution cell"
+    assert stub is None, f"{notebook_id(path)}: exercise cell {stub_index} has no solution cell"
     return first, pairs
 
 
@@ -60,7 +62,7 @@ def _cases():
         for stub, solution, index in pairs:
             name = CHECK_CALL.search(stub)
             label = name.group(1) if name else f"cell{index}"
-            yield pytest.param(path, first, stub, solution, id=f"{path.stem}:{label}")
+            yield pytest.param(path, first, stub, solution, id=f"{notebook_id(path)}:{label}")
 
 
 def _python(source: str) -> str:
@@ -100,7 +102,7 @@ def _namespace(first: str, path: Path) -> dict:
     """A fresh namespace that has run the chapter's first code cell (its imports)."""
     matplotlib.use("Agg", force=True)
     namespace = {"__name__": "__main__", "get_ipython": _NoIPythonShell()}
-    _run(first, namespace, f"{path.name}: first code cell")
+    _run(first, namespace, f"{notebook_id(path)}: first code cell")
     return namespace
 
 
@@ -126,31 +128,35 @@ def test_stub_fails_helpfully_and_solution_passes(path, first, stub, solution, c
     import matplotlib.pyplot as plt
 
     for what, source in (("exercise", stub), ("solution", solution)):
-        assert _ends_with_check(source), f"{path.name}: the {what} cell must end with check(...)"
+        assert _ends_with_check(source), f"{notebook_id(path)}: the {what} cell must end with check(...)"
     try:
-        _run(stub, _namespace(first, path), f"{path.name}: exercise stub")
+        _run(stub, _namespace(first, path), f"{notebook_id(path)}: exercise stub")
         stub_results = list(checks)
-        assert stub_results, f"{path.name}: the exercise cell does not call check(...)"
+        assert stub_results, f"{notebook_id(path)}: the exercise cell does not call check(...)"
         for result in stub_results:
-            assert not result.passed, f"{path.name}: the blank stub passes its check: {result}"
-            assert result.message.strip(), f"{path.name}: the stub's check gives no message"
+            assert not result.passed, f"{notebook_id(path)}: the blank stub passes its check: {result}"
+            assert result.message.strip(), f"{notebook_id(path)}: the stub's check gives no message"
 
         checks.clear()
-        _run(solution, _namespace(first, path), f"{path.name}: solution")
+        _run(solution, _namespace(first, path), f"{notebook_id(path)}: solution")
         solution_results = list(checks)
-        assert solution_results, f"{path.name}: the solution cell does not call check(...)"
+        assert solution_results, f"{notebook_id(path)}: the solution cell does not call check(...)"
         for result in solution_results:
-            assert result.passed, f"{path.name}: the solution fails its check: {result.message}"
+            assert result.passed, f"{notebook_id(path)}: the solution fails its check: {result.message}"
         assert ({r.name for r in stub_results} == {r.name for r in solution_results}), (
-            f"{path.name}: the stub and the solution check different exercises")
+            f"{notebook_id(path)}: the stub and the solution check different exercises")
     finally:
         plt.close("all")
 
 
-@pytest.mark.parametrize("path", chapter_notebooks(), ids=lambda p: p.stem)
-def test_chapter_has_enough_exercises(path):
-    _, pairs = _exercises(path)
-    assert len(pairs) >= MIN_EXERCISES, (
-        f"{path.name} has {len(pairs)} exercises (cells tagged exercise + solution), needs "
-        f"{MIN_EXERCISES}; a notebook that is not a chapter belongs in NON_CHAPTER_NOTEBOOKS "
-        "(tools/book_pages.py)")
+CHAPTERS = {name: paths for name, paths in chapters().items()
+            if name not in NON_CHAPTER_NOTEBOOKS}
+
+
+@pytest.mark.parametrize("chapter", sorted(CHAPTERS))
+def test_chapter_has_enough_exercises(chapter):
+    count = sum(len(_exercises(path)[1]) for path in CHAPTERS[chapter])
+    assert count >= MIN_EXERCISES, (
+        f"chapter {chapter} has {count} exercises (cells tagged exercise + solution) in "
+        f"{[notebook_id(p) for p in CHAPTERS[chapter]]}, needs {MIN_EXERCISES}; a notebook that "
+        "is not a chapter belongs in NON_CHAPTER_NOTEBOOKS (tools/book_pages.py)")

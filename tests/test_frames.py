@@ -614,3 +614,83 @@ def test_lab_validated_and_vectorised():
 def test_module_lists_its_public_names():
     for name in frames.__all__:
         assert hasattr(frames, name)
+
+
+# --------------------------------------------------------------------------------------------
+# se2_log (the inverse of se2_exp) and pose_rate, against scipy's matrix logarithm and a
+# sympy derivative
+
+def _homogeneous(x, y, th):
+    c, s = math.cos(th), math.sin(th)
+    return np.array([[c, -s, x], [s, c, y], [0.0, 0.0, 1.0]])
+
+
+@given(st.floats(-3.0, 3.0), st.floats(-3.0, 3.0), st.floats(-3.1, 3.1), st.floats(0.1, 5.0))
+def test_se2_log_is_the_matrix_logarithm(dx, dy, dth, dt):
+    from scipy.linalg import logm
+
+    twist = frames.se2_log([dx, dy, dth], dt)
+    xi = np.real(logm(_homogeneous(dx, dy, dth))) / dt  # principal log: |dth| < pi here
+    np.testing.assert_allclose(twist, [xi[0, 2], xi[1, 2], xi[1, 0]], atol=1e-9)
+
+
+@given(st.floats(-2.0, 2.0), st.floats(-2.0, 2.0), st.floats(-6.2, 6.2), st.floats(0.05, 3.0))
+def test_se2_log_inverts_se2_exp(vx, vy, phi, dt):
+    twist = np.array([vx, vy, phi / dt])
+    back = frames.se2_log(frames.se2_exp(twist, dt), dt)
+    np.testing.assert_allclose(back, twist, atol=1e-9 * (1 + 1 / abs(2 * math.pi - abs(phi))))
+
+
+def test_se2_log_by_hand():
+    # straight ahead 3 m in 2 s: 1.5 m/s, no turn
+    assert frames.se2_log(Pose(3.0, 0.0, 0.0), 2.0) == Twist(1.5, 0.0, 0.0)
+    # a turn on the spot
+    assert frames.se2_log(Pose(0.0, 0.0, 1.0)) == Twist(0.0, 0.0, 1.0)
+    # a half circle of radius 1 to the left: from (0, 0) to (0, 2), pi/1 s of travel
+    tw = frames.se2_log(Pose(0.0, 2.0, math.pi))
+    assert (tw.vx, tw.vy, tw.omega) == pytest.approx((math.pi, 0.0, math.pi), abs=1e-15)
+    # arrays: one row per displacement
+    out = frames.se2_log([[3.0, 0.0, 0.0], [0.0, 0.0, 1.0]], 1.0)
+    np.testing.assert_allclose(out, [[3.0, 0.0, 0.0], [0.0, 0.0, 1.0]], atol=1e-15)
+
+
+@pytest.mark.parametrize("delta, dt, match", [
+    (Pose(0.0, 0.0, 2 * math.pi), 1.0, "delta"),
+    ([0.0, 0.0, -7.0], 1.0, "delta"),
+    ([0.0, math.nan, 0.0], 1.0, "delta"),
+    ([0.0, 0.0], 1.0, "delta"),
+    (Pose(1.0, 0.0, 0.0), 0.0, "dt"),
+    (Pose(1.0, 0.0, 0.0), True, "dt"),
+])
+def test_se2_log_rejects_bad_input(delta, dt, match):
+    with pytest.raises(ValueError, match=match):
+        frames.se2_log(delta, dt)
+
+
+def test_pose_rate_is_the_derivative_of_the_exact_motion():
+    t, th0, vx, vy, w = sp.symbols("t theta0 v_x v_y omega", real=True)
+    # the exact motion under a constant twist: heading th0 + w t, velocity rotated into the
+    # world; its derivative at t = 0 is the pose rate
+    theta = th0 + w * t
+    xdot = vx * sp.cos(theta) - vy * sp.sin(theta)
+    ydot = vx * sp.sin(theta) + vy * sp.cos(theta)
+    x = sp.integrate(xdot, (t, 0, t))
+    y = sp.integrate(ydot, (t, 0, t))
+    rates = [sp.diff(e, t).subs(t, 0) for e in (x, y, theta)]
+    f = sp.lambdify((th0, vx, vy, w), rates)
+    rng = np.random.default_rng(4)
+    for th, a, b, c in rng.uniform(-4, 4, size=(50, 4)):
+        got = frames.pose_rate(th, Twist(a, b, c))
+        assert isinstance(got, frames.PoseRate)
+        np.testing.assert_allclose(got, [float(r) for r in f(th, a, b, c)], atol=1e-12)
+
+
+def test_pose_rate_by_hand_and_vectorised():
+    r = frames.pose_rate(0.0, [1.0, 0.0, 0.0])
+    assert r == (1.0, 0.0, 0.0) and r.x_dot == 1.0
+    out = frames.pose_rate([0.0, math.pi / 2], [[1.0, 0.0, 0.3], [1.0, 0.0, 0.3]])
+    np.testing.assert_allclose(out, [[1.0, 0.0, 0.3], [0.0, 1.0, 0.3]], atol=1e-15)
+    with pytest.raises(ValueError, match="theta"):
+        frames.pose_rate(math.nan, Twist(1.0, 0.0, 0.0))
+    with pytest.raises(ValueError, match="twist"):
+        frames.pose_rate(0.0, [1.0, 0.0])

@@ -12,7 +12,7 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from wheelkin import frames
+from wheelkin import frames, mecanum
 from wheelkin.exercises import all_exercises, check
 from wheelkin.mecanum import (
     DOCUMENT_MAX_SPEED,
@@ -474,3 +474,87 @@ def test_sandbox_slips_where_grip_usage_passes_one(heading, usage_per_a):
                          robot.set_wheel_rates(inverse_kinematics(
                              *circle_twist(radius, lap, t, heading=heading), EXAMPLE_GEOMETRY)))
         assert traj.slipping.any() == slips, (heading, usage)
+
+
+# --------------------------------------------------------------------------------------------
+# desaturation and the centre of rotation, against WPILib's published formulas
+
+def _wpilib_mecanum_wheel_speeds(vx, vy, omega, fl, fr, rl, rr, cor):
+    """MecanumDriveKinematics.toWheelSpeeds (WPILib): rows (1, -1, -(x + y)) for FL,
+    (1, 1, x - y) for FR, (1, 1, x - y) for RL, (1, -1, -(x + y)) for RR, with (x, y) each
+    wheel's position minus the centre of rotation; wheel surface speeds in m/s."""
+    rows = []
+    for (x, y), sign in zip((fl, fr, rl, rr), ("m", "p", "p", "m"), strict=True):
+        x, y = x - cor[0], y - cor[1]
+        rows.append([1, -1, -(x + y)] if sign == "m" else [1, 1, x - y])
+    return np.array(rows) @ np.array([vx, vy, omega])
+
+
+def _wpilib_desaturate(speeds, limit):
+    """MecanumDriveWheelSpeeds.desaturate: if the largest |speed| exceeds the limit, every
+    speed is multiplied by limit / largest."""
+    real_max = max(abs(s) for s in speeds)
+    if real_max > limit:
+        return [s / real_max * limit for s in speeds]
+    return list(speeds)
+
+
+@given(st.floats(-2, 2), st.floats(-2, 2), st.floats(-3, 3), st.floats(-0.5, 0.5),
+       st.floats(-0.5, 0.5))
+def test_centre_of_rotation_is_wpilibs(vx, vy, omega, cx, cy):
+    g = MecanumGeometry(0.05, 0.2, 0.15)
+    got = mecanum.inverse_kinematics(vx, vy, omega, g, centre_of_rotation=(cx, cy))
+    want = _wpilib_mecanum_wheel_speeds(vx, vy, omega, (0.2, 0.15), (0.2, -0.15),
+                                        (-0.2, 0.15), (-0.2, -0.15), (cx, cy))
+    np.testing.assert_allclose(got * g.wheel_radius, want, atol=1e-12)
+    # the default centre is the origin
+    np.testing.assert_allclose(mecanum.inverse_kinematics(vx, vy, omega, g),
+                               mecanum.inverse_kinematics(vx, vy, omega, g,
+                                                          centre_of_rotation=(0.0, 0.0)))
+
+
+def test_turning_about_a_wheel_leaves_it_still_for_any_roller_angle():
+    for gamma in (0.3, math.pi / 4, 1.2):
+        g = MecanumGeometry(0.05, 0.2, 0.15, gamma)
+        for k, (x, y) in enumerate([(0.2, 0.15), (0.2, -0.15), (-0.2, 0.15), (-0.2, -0.15)]):
+            rates = mecanum.inverse_kinematics(0.0, 0.0, 1.3, g, centre_of_rotation=(x, y))
+            assert abs(rates[k]) < 1e-12
+
+
+def test_unified_model_has_the_same_centre_of_rotation():
+    from wheelkin import unified
+
+    g = MecanumGeometry(0.05, 0.2, 0.15, 0.6)
+    got = unified.wheel_rates(unified.mecanum_wheels(g), (0.3, -0.2, 0.7),
+                              centre_of_rotation=(0.1, -0.4))
+    want = mecanum.inverse_kinematics(0.3, -0.2, 0.7, g, centre_of_rotation=(0.1, -0.4))
+    np.testing.assert_allclose(got, want, atol=1e-12)
+    with pytest.raises(ValueError, match="centre_of_rotation"):
+        unified.wheel_rates(unified.mecanum_wheels(g), (0.3, -0.2, 0.7),
+                            centre_of_rotation=(0.1,))
+
+
+@given(st.lists(st.floats(-100, 100), min_size=4, max_size=4), st.floats(0.1, 50))
+def test_desaturate_is_wpilibs(rates, limit):
+    got = mecanum.desaturate(rates, limit)
+    np.testing.assert_allclose(got, _wpilib_desaturate(rates, limit), rtol=1e-15, atol=1e-300)
+    assert np.max(np.abs(got)) <= limit * (1 + 1e-15) or np.allclose(got, rates)
+
+
+def test_desaturate_keeps_the_motion_direction_and_vectorises():
+    g = MecanumGeometry(0.05, 0.2, 0.15)
+    rates = mecanum.inverse_kinematics(3.0, 1.0, 2.0, g)
+    out = mecanum.desaturate(rates, 20.0)
+    twist_in = mecanum.forward_kinematics(rates, g)
+    twist_out = mecanum.forward_kinematics(out, g)
+    s = 20.0 / np.max(np.abs(rates))
+    np.testing.assert_allclose(twist_out, s * twist_in, atol=1e-12)  # same path, slower
+    batch = mecanum.desaturate([[1.0, 2.0, 3.0, 4.0], [10.0, 0.0, 0.0, -20.0]], 5.0)
+    np.testing.assert_allclose(batch, [[1.0, 2.0, 3.0, 4.0], [2.5, 0.0, 0.0, -5.0]])
+    for bad, name in (([1.0, 2.0, 3.0], 5.0), ([1.0, math.nan, 0, 0], 5.0)):
+        with pytest.raises(ValueError, match="wheel_rates"):
+            mecanum.desaturate(bad, name)
+    with pytest.raises(ValueError, match="max_rate"):
+        mecanum.desaturate([1.0, 2.0, 3.0, 4.0], 0.0)
+    with pytest.raises(ValueError, match="centre_of_rotation"):
+        mecanum.inverse_kinematics(1.0, 0.0, 0.0, g, centre_of_rotation=(0.0, math.inf))

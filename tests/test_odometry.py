@@ -417,27 +417,105 @@ def test_every_odometry_panel_survives_every_slider_value():
 
 
 # --------------------------------------------------------------------------------------------
-# the unvalidated fast path of pose_update (the waypoint panel's controller loop)
-
-def _bits(values) -> bytes:
-    return np.asarray(values, dtype=float).tobytes()  # sign of zero and last bit included
-
-
-@settings(max_examples=300)
-@given(st.floats(-1e4, 1e4), st.floats(-1e4, 1e4), st.floats(-50.0, 50.0),
-       st.floats(-1e3, 1e3),
-       st.one_of(st.floats(-7.0, 7.0), st.floats(-2e-4, 2e-4),
-                 st.sampled_from([0.0, -0.0, odo.SERIES_THRESHOLD, -odo.SERIES_THRESHOLD,
-                                  float(np.nextafter(odo.SERIES_THRESHOLD, 0.0)), math.pi])))
-def test_unchecked_pose_update_is_the_exact_pose_update_to_the_last_bit(x, y, th, ds, dth):
-    fast = odo._pose_update_unchecked(x, y, th, ds, dth)
-    assert all(type(c) is float for c in fast)
-    assert _bits(fast) == _bits(odo.pose_update([x, y, th], ds, dth, "exact"))
-
-
-def test_pose_update_still_validates_beside_its_fast_path():
+def test_pose_update_validates_every_argument():
     for args, name in ((([math.nan, 0.0, 0.0], 1.0, 0.0), "pose"),
                        (([0.0, 0.0, 0.0], math.nan, 0.0), "distance"),
                        (([0.0, 0.0, 0.0], 1.0, math.inf), "dtheta")):
         with pytest.raises(ValueError, match=name):
             odo.pose_update(*args)
+
+
+# --------------------------------------------------------------------------------------------
+# SI odometry: against ros2_controllers' and WPILib's published update formulas
+
+def _ros2_integrate_exact(deltas_left, deltas_right, track_width):
+    """diff_drive_controller/src/odometry.cpp (ros2_controllers): updateFromVelocity /
+    integrateExact, written out from its published source: runge-kutta 2 below 1e-6 rad,
+    else the circle r = ds / dtheta."""
+    x = y = heading = 0.0
+    out = []
+    for dl, dr in zip(deltas_left, deltas_right, strict=True):
+        linear = 0.5 * (dl + dr)
+        angular = (dr - dl) / track_width
+        if abs(angular) < 1e-6:
+            direction = heading + 0.5 * angular
+            x += linear * math.cos(direction)
+            y += linear * math.sin(direction)
+            heading += angular
+        else:
+            heading_old = heading
+            r = linear / angular
+            heading += angular
+            x += r * (math.sin(heading) - math.sin(heading_old))
+            y += -r * (math.cos(heading) - math.cos(heading_old))
+        out.append((x, y, heading))
+    return np.array(out)
+
+
+def _wpilib_twist_exp(deltas_left, deltas_right, track_width):
+    """WPILib DifferentialDriveOdometry.update: Twist2d(ds, 0, dtheta) through Pose2d.exp,
+    whose sin(theta)/theta and (1 - cos(theta))/theta switch to 1 - theta^2/6 and theta/2
+    below 1e-9 rad."""
+    x = y = heading = 0.0
+    out = []
+    for dl, dr in zip(deltas_left, deltas_right, strict=True):
+        dx = 0.5 * (dl + dr)
+        dtheta = (dr - dl) / track_width
+        if abs(dtheta) < 1e-9:
+            s, c = 1.0 - dtheta**2 / 6.0, 0.5 * dtheta
+        else:
+            s, c = math.sin(dtheta) / dtheta, (1 - math.cos(dtheta)) / dtheta
+        tx, ty = dx * s, dx * c  # the body-frame displacement, then rotated by the heading
+        x += tx * math.cos(heading) - ty * math.sin(heading)
+        y += tx * math.sin(heading) + ty * math.cos(heading)
+        heading += dtheta
+        out.append((x, y, heading))
+    return np.array(out)
+
+
+def test_integrate_si_is_ros2_and_wpilib_odometry():
+    rng = np.random.default_rng(7)
+    left = rng.uniform(-0.02, 0.05, 500)
+    right = left + rng.normal(0.0, 0.01, 500)
+    right[::7] = left[::7]  # straight updates too (the small-angle branches)
+    w = 0.287
+    got = odo.integrate_si(left, right, w)
+    np.testing.assert_allclose(got, _ros2_integrate_exact(left, right, w), atol=1e-12)
+    np.testing.assert_allclose(got, _wpilib_twist_exp(left, right, w), atol=1e-12)
+
+
+def test_integrate_si_methods_and_start_pose_by_hand():
+    # a quarter circle of radius 1 m (W = 0.5 m) in one update, from (1, 2) facing +y
+    w, r = 0.5, 1.0
+    left, right = (r - w / 2) * math.pi / 2, (r + w / 2) * math.pi / 2
+    start = (1.0, 2.0, math.pi / 2)
+    exact = odo.integrate_si([left], [right], w, pose=start)[0]
+    np.testing.assert_allclose(exact, [0.0, 3.0, math.pi], atol=1e-15)
+    euler = odo.integrate_si([left], [right], w, "euler", pose=start)[0]
+    np.testing.assert_allclose(euler, [1.0, 2.0 + math.pi / 2, math.pi], atol=1e-15)
+    mid = odo.integrate_si([left], [right], w, "midpoint", pose=start)[0]
+    h = math.pi / 2 * (math.sqrt(0.5))  # the arc length along the chord's direction
+    np.testing.assert_allclose(mid, [1.0 - h, 2.0 + h, math.pi], atol=1e-15)
+
+
+def test_body_motion_by_hand():
+    m = odo.body_motion([0.1, -0.2], [0.3, 0.2], 0.4)
+    assert isinstance(m, odo.BodyMotion)
+    np.testing.assert_allclose(m.distance, [0.2, 0.0])
+    np.testing.assert_allclose(m.dtheta, [0.5, 1.0])
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: odo.integrate_si([0.1], [0.1, 0.2], 0.3), "delta_right"),
+    (lambda: odo.integrate_si([], [], 0.3), "delta_left"),
+    (lambda: odo.integrate_si([[0.1]], [[0.1]], 0.3), "delta_left"),
+    (lambda: odo.integrate_si([math.nan], [0.1], 0.3), "delta_left"),
+    (lambda: odo.integrate_si([0.1], [0.1], 0.0), "track_width"),
+    (lambda: odo.integrate_si([0.1], [0.1], True), "track_width"),
+    (lambda: odo.integrate_si([0.1], [0.1], 0.3, "rk4"), "method"),
+    (lambda: odo.integrate_si([0.1], [0.1], 0.3, pose=(0, 0)), "pose"),
+    (lambda: odo.body_motion([0.1], ["a"], 0.3), "delta_right"),
+])
+def test_integrate_si_rejects_bad_input(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()

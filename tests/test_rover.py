@@ -438,3 +438,60 @@ def test_sweep_animation_renders_every_frame():
 
     html = to_html(rw.sweep_animation(frames=5), name="test-rover-sweep", alt="sweep")
     assert len(re.findall(r"frames\[\d+\]", html)) == 5
+
+
+# --------------------------------------------------------------------------------------------
+# the SI, REP-103 entry point
+
+@given(st.floats(0.46, 20.0), st.sampled_from([-1.0, 1.0]),
+       st.one_of(st.floats(-2.0, -0.01), st.floats(0.01, 2.0)))
+def test_wheel_commands_are_the_documents_in_metres_with_the_books_signs(radius_m, side,
+                                                                         centre_speed):
+    from wheelkin import rover as rv
+    from wheelkin.units import INCH
+
+    big_r = side * radius_m  # REP-103: > 0 turns left
+    omega = centre_speed / big_r
+    cmd = rv.wheel_commands(centre_speed, omega)
+    r_doc = -big_r / INCH  # the document's radius: inches, > 0 turns right
+    # the document gives the outer middle wheel X; the centre then moves at X |r|/(|r| + d4)
+    x_doc = centre_speed / INCH * (abs(r_doc) + rv.OSR_GEOMETRY.d4) / abs(r_doc)
+    want_speeds = rv.wheel_speeds(r_doc, x_doc, straight_threshold=math.inf) * INCH
+    want_angles = -rv.corner_angles(r_doc, straight_threshold=math.inf)
+    np.testing.assert_allclose(cmd.wheel_speeds, want_speeds, atol=1e-12)
+    np.testing.assert_allclose(cmd.steering_angles, want_angles, atol=1e-12)
+
+
+def test_wheel_commands_roll_every_wheel_at_right_angles_to_the_icr():
+    from wheelkin import rover as rv
+
+    v, omega = 0.4, 0.5  # R = 0.8 m to the left
+    cmd = rv.wheel_commands(v, omega)
+    pos = rv.wheel_positions(rv.OSR_GEOMETRY_SI)
+    steer = np.zeros(6)
+    steer[[0, 3, 2, 5]] = cmd.steering_angles
+    heading = np.stack([np.cos(steer), np.sin(steer)], axis=1)
+    to_icr = np.array([0.0, v / omega]) - pos
+    np.testing.assert_allclose(np.sum(heading * to_icr, axis=1), 0.0, atol=1e-12)
+    # each wheel's speed is omega times its distance to the ICR (S = R theta)
+    np.testing.assert_allclose(cmd.wheel_speeds, omega * np.linalg.norm(to_icr, axis=1),
+                               atol=1e-12)
+    assert np.all(cmd.steering_angles[:2] > 0)  # a left turn steers the fronts left
+
+
+def test_wheel_commands_straight_vectorised_and_bad_input():
+    from wheelkin import rover as rv
+
+    cmd = rv.wheel_commands([0.5, -0.2], 0.0)
+    np.testing.assert_array_equal(cmd.wheel_speeds, [[0.5] * 6, [-0.2] * 6])
+    np.testing.assert_array_equal(cmd.steering_angles, np.zeros((2, 4)))
+    speeds, angles = rv.wheel_commands(0.0, 0.0)
+    assert not np.any(speeds) and not np.any(angles)
+    with pytest.raises(ValueError, match="omega"):
+        rv.wheel_commands(0.0, 1.0)  # on the spot: the corners would need 55 degrees
+    with pytest.raises(ValueError, match="omega"):
+        rv.wheel_commands(0.1, math.nan)
+    with pytest.raises(ValueError, match="^v "):
+        rv.wheel_commands("fast", 0.1)
+    with pytest.raises(ValueError, match="max_corner_angle"):
+        rv.wheel_commands(0.1, 0.0, max_corner_angle=2.0)

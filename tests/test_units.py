@@ -52,6 +52,7 @@ def test_constants_by_definition():
         (1.0, "ft", 0.3048),
         (7.0, "m/s", 7.0),
         (1500.0, "mrad", 1.5),
+        (30.0, "rpm", math.pi),  # half a revolution per second
     ],
 )
 def test_to_si_hand_values(value, unit, si):
@@ -61,7 +62,7 @@ def test_to_si_hand_values(value, unit, si):
 
 def test_every_unit_is_tested_by_hand():
     tested = {"in", "ft/s", "mm", "mrad/s", "deg", "deg/s", "m", "rad/s", "in/s", "mm/s", "rad",
-              "ft", "m/s", "mrad"}
+              "ft", "m/s", "mrad", "rpm"}
     assert tested == set(UNITS)
 
 
@@ -197,3 +198,14 @@ def test_bad_steps_and_distance_name_the_parameter():
 def test_steps_per_m_from_validates(args, name):
     with pytest.raises(ValueError, match=rf"^{name} must be a finite number > 0"):
         steps_per_m_from(*args)
+
+
+def test_rpm_is_a_rate_unit():
+    from wheelkin import units as u
+
+    assert u.RPM == 2 * math.pi / 60  # one revolution (2 pi rad) per 60 s
+    assert u.to_si(60.0, "rpm") == pytest.approx(2 * math.pi)
+    assert u.convert(1.0, "rad/s", "rpm") == pytest.approx(60 / (2 * math.pi))
+    assert u.convert(360.0, "deg/s", "rpm") == pytest.approx(60.0)
+    with pytest.raises(ValueError, match="to_unit"):
+        u.convert(1.0, "rpm", "m/s")

@@ -103,3 +103,63 @@ def test_an_artist_dropped_from_the_blit_list_stays_visible():
     assert _blue_rows(panel).size > 0
     panel.redraw(a=0.8)
     assert _blue_rows(panel).size > 0
+
+
+# --- every registered panel: its size on a laptop screen, and text you can read ---------------
+
+from wheelkin import style  # noqa: E402
+from wheelkin.widgets import all_panels  # noqa: E402
+
+PANELS = sorted(all_panels())
+#: A 1366x768 laptop shows about 600 px of a notebook's output (the browser's tab and address
+#: bars and JupyterLab's menu, tab and toolbar take the rest).
+LAPTOP_HEIGHT_PX = 600
+#: One row of ipywidgets controls in JupyterLab: a 28 px slider plus its 2 px margins, rounded.
+ROW_PX = 32
+
+
+def test_panel_image_is_shown_at_its_natural_size():
+    panel = _panel([])
+    png = Image.open(io.BytesIO(panel.image.value))
+    assert panel.image.layout.width == f"{png.width}px"
+    assert panel.image.layout.height == f"{png.height}px"
+    assert png.width == round(3 * style.DPI)  # figsize (3, 2) at the book's dpi
+    panel.close()
+
+
+@pytest.mark.parametrize("name", PANELS)
+def test_panel_fits_a_laptop_screen(name):
+    panel = all_panels()[name]()
+    try:
+        width_px = panel.figure.get_figwidth() * panel.dpi
+        figure_px = panel.figure.get_figheight() * panel.dpi
+        n = len(panel.controls)
+        rows = n if n <= 3 else (n + 1) // 2  # more than three controls: two columns
+        total = figure_px + rows * ROW_PX + (24 if panel.title else 0)
+        assert width_px <= style.COLUMN_WIDTH_IN * style.DPI + 0.5, (
+            f"panel {name} is {width_px:.0f} px wide (at most 670)")
+        assert total <= LAPTOP_HEIGHT_PX, (
+            f"panel {name} is {total:.0f} px tall with its {n} controls "
+            f"(figure {figure_px:.0f} px), over {LAPTOP_HEIGHT_PX} px: a smaller figure")
+        assert panel.dpi >= style.DPI, f"panel {name} renders at {panel.dpi} dpi (< {style.DPI})"
+    finally:
+        panel.close()
+
+
+@pytest.mark.parametrize("name", PANELS)
+def test_panel_text_is_legible_at_every_extreme(name):
+    """check_figure on the panel's figure at its start and with every control at min and max."""
+    panel = all_panels()[name]()
+    # A panel's image is shown at its natural size (not scaled to the book's column).
+    shown = {"draw": False, "shown_width_px": panel.size_px[0]}
+    try:
+        found = [f"start: {p}" for p in style.check_figure(panel.figure, **shown)]
+        for end in (0, -1):
+            values = {k: slider_values(c)[end] for k, c in panel.controls.items()}
+            panel.redraw(**values)
+            panel.figure.canvas.draw()
+            where = "all controls at " + ("min" if end == 0 else "max")
+            found += [f"{where}: {p}" for p in style.check_figure(panel.figure, **shown)]
+        assert not found, f"panel {name}:\n" + "\n".join(dict.fromkeys(found))
+    finally:
+        panel.close()

@@ -1,35 +1,57 @@
-"""Which pages and chapters the book has, derived from ``_toc.yml`` and ``notebooks/``.
+"""Which pages, notebooks and chapters the book has, derived from ``_toc.yml`` and ``notebooks/``.
 
-Shared by the tests (notebook checks, exercise checks, browser tests), so that none of them
-hard-codes the list of chapters.
+Shared by the tools and tests (execution, notebook checks, exercise checks, errata, browser
+tests), so that none of them hard-codes the list of chapters. Two layouts live side by side
+(docs/DESIGN.md, "Pages of one idea"):
+
+- first edition: a chapter is one notebook, ``notebooks/03_rover.ipynb``;
+- second edition: a chapter is a folder, ``notebooks/03_rover/index.md`` (the landing page)
+  with section notebooks ``notebooks/03_rover/01_geometry.ipynb`` ..., listed in ``_toc.yml``
+  as ``sections:`` (nested to any depth) under the landing page.
+
+>>> chapter_of(Path("notebooks/03_rover/01_geometry.ipynb"))
+'03_rover'
+>>> chapter_of(Path("notebooks/03_rover.ipynb"))
+'03_rover'
+>>> notebook_id(NOTEBOOKS / "03_rover" / "01_geometry.ipynb")
+'03_rover/01_geometry'
 """
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import yaml
 
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = ROOT / "notebooks"
+TOC = ROOT / "_toc.yml"
 
-#: Notebooks that are not chapters (they need not follow the chapter anatomy, e.g. the three
-#: exercises), by file stem, with the reason. Every other notebooks/NN_*.ipynb is a chapter.
+#: Chapters that are not chapters of the anatomy (no exercises needed), by chapter name (the
+#: notebook's stem or the chapter folder's name), with the reason.
 NON_CHAPTER_NOTEBOOKS: dict[str, str] = {
     "02_sandbox": "the sandbox gallery: a tour of the physics sandbox, not a chapter",
 }
 
+_NUMBERED = re.compile(r"^\d\d_")
 
-def toc_files(toc: Path = ROOT / "_toc.yml") -> list[str]:
-    """Every page of the book, in reading order, as paths without suffix (``book/intro``)."""
+
+def _strip(name: str) -> str:
+    for suffix in (".md", ".ipynb", ".rst"):
+        if name.endswith(suffix):
+            return name[: -len(suffix)]
+    return name
+
+
+def toc_files(toc: Path = TOC) -> list[str]:
+    """Every page of the book, in reading order, as paths without suffix (``book/intro``).
+
+    Parts, chapters and ``sections:`` at any depth are walked in order; a page is listed before
+    its sections.
+    """
     data = yaml.safe_load(toc.read_text(encoding="utf-8")) or {}
     pages: list[str] = []
-
-    def strip(name: str) -> str:
-        for suffix in (".md", ".ipynb", ".rst"):
-            if name.endswith(suffix):
-                return name[: -len(suffix)]
-        return name
 
     def walk(node) -> None:
         if isinstance(node, list):
@@ -37,21 +59,79 @@ def toc_files(toc: Path = ROOT / "_toc.yml") -> list[str]:
                 walk(item)
         elif isinstance(node, dict):
             if isinstance(node.get("file"), str):
-                pages.append(strip(node["file"]))
+                pages.append(_strip(node["file"]))
             for key in ("parts", "chapters", "sections"):
                 walk(node.get(key))
 
     if isinstance(data.get("root"), str):
-        pages.append(strip(data["root"]))
+        pages.append(_strip(data["root"]))
     walk({k: v for k, v in data.items() if k != "root"})
     return pages
 
 
-def notebooks() -> list[Path]:
-    """Every numbered notebook present, in order (``notebooks/NN_name.ipynb``)."""
-    return sorted(NOTEBOOKS.glob("[0-9][0-9]_*.ipynb"))
+def toc_notebooks(toc: Path = TOC, root: Path = ROOT) -> list[Path]:
+    """The notebooks the toc lists, in reading order (pages with an ``.ipynb`` file)."""
+    return [root / f"{page}.ipynb" for page in toc_files(toc)
+            if (root / f"{page}.ipynb").is_file()]
+
+
+def notebooks(folder: Path = NOTEBOOKS) -> list[Path]:
+    """Every numbered notebook present, in path order, in both layouts.
+
+    ``notebooks/NN_name.ipynb`` and ``notebooks/NN_name/MM_topic.ipynb`` (any depth below a
+    numbered folder); checkpoints and unnumbered scratch files are not notebooks of the book.
+    """
+    found = []
+    for path in folder.rglob("*.ipynb"):
+        parts = path.relative_to(folder).parts
+        if any(p.startswith(".") for p in parts):
+            continue
+        if all(_NUMBERED.match(p) for p in parts):
+            found.append(path)
+    return sorted(found)
+
+
+def notebook_id(path: Path, folder: Path = NOTEBOOKS) -> str:
+    """A notebook's name in the book: its path below ``notebooks/`` without the suffix.
+
+    Unique across the book (two chapters may both have ``01_geometry.ipynb``), the same on
+    every machine; ids derived from it (widgets, animation players) are unique too. For a
+    notebook outside ``notebooks/`` it is the file's stem.
+    """
+    path = Path(path).resolve()
+    try:
+        return path.relative_to(folder.resolve()).with_suffix("").as_posix()
+    except ValueError:
+        return path.stem
+
+
+def chapter_of(path: Path) -> str:
+    """The chapter a notebook belongs to: the numbered folder below ``notebooks/``, or the
+    notebook's own stem in the first-edition layout."""
+    path = Path(path)
+    parts = list(path.with_suffix("").parts)
+    if "notebooks" in parts:
+        parts = parts[len(parts) - parts[::-1].index("notebooks"):]
+    return parts[0] if parts else path.stem
+
+
+def chapters(folder: Path = NOTEBOOKS) -> dict[str, list[Path]]:
+    """Every chapter present, by name, with its notebooks in order."""
+    out: dict[str, list[Path]] = {}
+    for path in notebooks(folder):
+        out.setdefault(chapter_of(path), []).append(path)
+    return out
 
 
 def chapter_notebooks() -> list[Path]:
-    """The notebooks that are chapters (all but :data:`NON_CHAPTER_NOTEBOOKS`)."""
-    return [p for p in notebooks() if p.stem not in NON_CHAPTER_NOTEBOOKS]
+    """The notebooks of chapters (all but those of :data:`NON_CHAPTER_NOTEBOOKS`)."""
+    return [p for p in notebooks() if chapter_of(p) not in NON_CHAPTER_NOTEBOOKS]
+
+
+if __name__ == "__main__":  # `python tools/book_pages.py [--notebooks]`: for the Makefile
+    import sys
+
+    if "--notebooks" in sys.argv[1:]:
+        print("\n".join(p.relative_to(ROOT).as_posix() for p in toc_notebooks()))
+    else:
+        print("\n".join(toc_files()))

@@ -23,6 +23,18 @@ newline).
 
 A notebook fails (exit status 1, nothing written) when a cell raises, times out, or prints a
 warning on stderr; the message names the notebook and the cell.
+
+Figures are checked (``wheelkin.style.check_figure``: text too small, overlapping, or leaving
+the figure) in every notebook that calls ``wheelkin.style.setup()``: the kernel runs with
+``WHEELKIN_CHECK_FIGURES=1``, and ``style.setup()`` then checks every figure a cell shows and
+``wheelkin.animation.show`` the first and last frame of every animation; a problem is an
+error in that cell (``FigureCheckError: ...`` naming the texts). Notebooks still in
+first-edition form do not call ``style.setup()`` and are not checked. ``--no-figure-check``
+turns the check off for a run.
+
+Notebooks may sit in chapter folders (``notebooks/03_rover/01_geometry.ipynb``): the ids that
+:func:`normalise` derives are seeded with the path below ``notebooks/`` (``03_rover/01_geometry``),
+so they stay unique across the book.
 """
 
 from __future__ import annotations
@@ -41,6 +53,9 @@ from pathlib import Path
 
 import nbformat
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from book_pages import notebook_id
+
 #: Environment of the kernel (and of nbval's kernel: the Makefile exports the same values).
 DETERMINISTIC_ENV = {
     "PYTHONHASHSEED": "0",
@@ -50,6 +65,8 @@ DETERMINISTIC_ENV = {
     "LC_ALL": "C.UTF-8",
     "PYDEVD_DISABLE_FILE_VALIDATION": "1",  # silences debugpy's "frozen modules" notice
 }
+#: Set to "1" in the kernel's environment: wheelkin.style.setup() then checks every figure.
+FIGURE_CHECK_ENV = "WHEELKIN_CHECK_FIGURES"
 
 KERNELSPEC = {"display_name": "Python 3 (ipykernel)", "language": "python", "name": "python3"}
 WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
@@ -115,8 +132,8 @@ def _merge_streams(outputs: list) -> list:
 def normalise(nb: nbformat.NotebookNode, name: str) -> nbformat.NotebookNode:
     """Return ``nb`` in canonical form: the same however often and wherever it was executed.
 
-    ``name`` (the notebook's file stem) seeds the replacement ids, so that ids stay unique
-    across the pages of the book.
+    ``name`` (the notebook's path below ``notebooks/`` without suffix, ``notebook_id``) seeds
+    the replacement ids, so that ids stay unique across the pages of the book.
     """
     nb = copy.deepcopy(nb)
     nb.metadata.pop("widgets", None)
@@ -203,9 +220,10 @@ def _kernel_manager_class(socket_dir: str):
     return Manager
 
 
-def execute(path: Path, cell_timeout: int) -> nbformat.NotebookNode:
+def execute(path: Path, cell_timeout: int, check_figures: bool = True) -> nbformat.NotebookNode:
     """Run the notebook at ``path`` in a fresh kernel; return it normalised (not written)."""
     os.environ.update(DETERMINISTIC_ENV)
+    os.environ[FIGURE_CHECK_ENV] = "1" if check_figures else "0"
     nb = nbformat.read(path, as_version=4)
     current = {"index": None}
     with tempfile.TemporaryDirectory(prefix="wheelkin-kernel-") as socket_dir:
@@ -213,7 +231,7 @@ def execute(path: Path, cell_timeout: int) -> nbformat.NotebookNode:
     found = problems(nb)
     if found:
         raise NotebookFailure(f"{path}: " + "; ".join(found))
-    return normalise(nb, path.stem)
+    return normalise(nb, notebook_id(path))
 
 
 def _execute(nb, path: Path, cell_timeout: int, socket_dir: str, current: dict) -> None:
@@ -245,12 +263,13 @@ def _execute(nb, path: Path, cell_timeout: int, socket_dir: str, current: dict) 
                               f"{exc}") from None
 
 
-def _run_one(path_text: str, cell_timeout: int, check: bool) -> tuple[str, str, float]:
+def _run_one(path_text: str, cell_timeout: int, check: bool,
+             check_figures: bool = True) -> tuple[str, str, float]:
     """Worker: execute one notebook; return (path, status, seconds). Status 'FAIL ...' on error."""
     path = Path(path_text)
     start = time.perf_counter()
     try:
-        text = dumps(execute(path, cell_timeout))
+        text = dumps(execute(path, cell_timeout, check_figures))
     except NotebookFailure as exc:
         return path_text, f"FAIL {exc}", time.perf_counter() - start
     except Exception as exc:
@@ -278,6 +297,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="write nothing; fail if re-execution would change a file")
     parser.add_argument("--normalise", action="store_true",
                         help="do not execute; only rewrite each file in canonical form")
+    parser.add_argument("--no-figure-check", action="store_true",
+                        help="do not check the figures of notebooks that call style.setup()")
     args = parser.parse_args(argv)
     paths = [p for p in args.notebooks if p.suffix == ".ipynb"]
     missing = [str(p) for p in paths if not p.is_file()]
@@ -287,7 +308,7 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     if args.normalise:
         for path in paths:
-            text = dumps(normalise(nbformat.read(path, as_version=4), path.stem))
+            text = dumps(normalise(nbformat.read(path, as_version=4), notebook_id(path)))
             if text != path.read_text(encoding="utf-8"):
                 path.write_text(text, encoding="utf-8")
                 print(f"normalised {path}")
@@ -297,7 +318,8 @@ def main(argv: list[str] | None = None) -> int:
     failures = 0
     jobs = max(1, min(args.jobs, len(paths)))
     with ProcessPoolExecutor(max_workers=jobs) as pool:
-        futures = [pool.submit(_run_one, str(p), args.timeout, args.check) for p in paths]
+        futures = [pool.submit(_run_one, str(p), args.timeout, args.check,
+                               not args.no_figure_check) for p in paths]
         for future in futures:
             path, status, seconds = future.result()
             if status.startswith("FAIL"):

@@ -1,6 +1,7 @@
 r"""The numerical kernels every public function of the library calls: no validation here.
 
-One SE(2) arc step, one small-angle strategy, one C integer division. Public functions validate
+One SE(2) arc step, one small-angle strategy, one angle wrap, the differential drive's wheel
+speeds, one C integer division. Public functions validate
 their arguments and call these; inner loops (controllers, the sandbox, panels) call them
 directly with values they have already checked.
 
@@ -16,8 +17,11 @@ Taylor series :math:`a = 1 - \varphi^2/6 + \varphi^4/120`,
 :math:`b = \varphi/2 - \varphi^3/24 + \varphi^5/720`, whose truncation errors there are below
 :math:`\varphi^6/5040 < 2\cdot 10^{-28}` (relative), far under one unit in the last place;
 above it the closed forms are used, with :math:`1-\cos` written as :math:`2\sin^2(\varphi/2)`
-so that nothing cancels. Either way the result is within a few units in the last place of the
-exact value (tested against 50-digit arithmetic).
+so that nothing cancels. Either way both factors are within :math:`2\varepsilon`
+(relative; :math:`\varepsilon = 2^{-52}`) of the exact values for every normal float
+:math:`\varphi`, on the float and on the array path (``tests/test_kernels.py`` checks this
+against 50-digit arithmetic; for a subnormal :math:`\varphi`, :math:`b = \varphi/2` is rounded
+to the subnormal grid).
 """
 
 from __future__ import annotations
@@ -27,7 +31,10 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["SERIES_THRESHOLD", "arc_factors", "arc_step", "c_div"]
+__all__ = ["SERIES_THRESHOLD", "arc_factors", "arc_step", "c_div", "desaturate",
+           "diff_drive_wheel_speeds", "shift_twist", "wrap_angle"]
+
+_TWO_PI = 2.0 * math.pi
 
 #: Below this turn (rad) the arc factors come from their series (see the module docstring).
 SERIES_THRESHOLD: float = 1e-4
@@ -80,3 +87,50 @@ def c_div(numerator: int, denominator: int) -> int:
     """
     q = abs(numerator) // abs(denominator)
     return q if (numerator >= 0) == (denominator > 0) else -q
+
+
+def wrap_angle(angle: Any) -> Any:
+    r"""An angle (rad) wrapped to :math:`(-\pi, \pi]`; a float for a float, else an array.
+
+    An angle already inside is returned bit for bit (so wrapping is idempotent); :math:`-\pi`
+    maps to :math:`\pi`. The input must be finite (the caller checks).
+    """
+    if isinstance(angle, float | int) and not isinstance(angle, bool):
+        a = float(angle)
+        if -math.pi < a <= math.pi:
+            return a
+        r = math.fmod(a + math.pi, _TWO_PI)
+        r = (r + _TWO_PI if r < 0.0 else r) - math.pi  # [-pi, pi] after rounding
+        if r <= -math.pi:
+            r += _TWO_PI
+        return min(r, math.pi)
+    a = np.asarray(angle, dtype=float)
+    inside = (a > -math.pi) & (a <= math.pi)
+    r = np.remainder(a + math.pi, _TWO_PI) - math.pi  # [-pi, pi] after rounding
+    r = np.where(r <= -math.pi, r + _TWO_PI, r)
+    r = np.minimum(r, math.pi)
+    return np.where(inside, a, r)
+
+
+def diff_drive_wheel_speeds(v: Any, omega: Any, track_width: Any) -> tuple[Any, Any]:
+    r"""Left and right wheel ground speeds :math:`v \mp \omega W/2` of a differential drive."""
+    half = 0.5 * track_width
+    return v - omega * half, v + omega * half
+
+
+def desaturate(speeds: Any, limit: float) -> np.ndarray:
+    r"""Wheel speeds (..., n) scaled together, row by row, so that none exceeds ``limit`` in
+    size: :math:`s_i \cdot \min(1, \text{limit}/\max_j |s_j|)` (WPILib's
+    ``desaturateWheelSpeeds``). A row within the limit is returned unchanged."""
+    arr = np.asarray(speeds, dtype=float)
+    biggest = np.max(np.abs(arr), axis=-1, keepdims=True)
+    over = biggest > limit
+    scale = np.where(over, limit / np.where(over, biggest, 1.0), 1.0)
+    return np.where(over, arr * scale, arr)
+
+
+def shift_twist(vx: Any, vy: Any, omega: Any, cx: Any, cy: Any) -> tuple[Any, Any, Any]:
+    r"""The twist of the body-frame origin, given the velocity :math:`(v_x, v_y)` of the point
+    :math:`c` and the yaw rate: :math:`v_o = v_c + \omega \times (0 - c) =
+    (v_x + \omega c_y,\; v_y - \omega c_x)`."""
+    return vx + omega * cy, vy - omega * cx, omega

@@ -19,10 +19,14 @@ from collections.abc import Sequence
 
 import numpy as np
 
+#: The smallest positive normal float: a divisor below it makes 1/x overflow.
+_SMALLEST_NORMAL = float(np.finfo(float).tiny)
+
 __all__ = [
     "choice",
     "finite",
     "finite_array",
+    "finite_result",
     "in_range",
     "nonnegative",
     "positive",
@@ -51,6 +55,9 @@ def positive(name: str, value) -> float:
         raise ValueError(f"{name} must be a finite number > 0, got {value!r}") from None
     if x <= 0:
         raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    if x < _SMALLEST_NORMAL:  # 1/x would overflow
+        raise ValueError(f"{name} must be a finite number > 0 and at least "
+                         f"{_SMALLEST_NORMAL:g} (not subnormal), got {value!r}")
     return x
 
 
@@ -75,8 +82,21 @@ def in_range(name: str, value, low: float, high: float, *, inclusive: bool = Tru
     return x
 
 
+def _is_boolean(value) -> bool:
+    if isinstance(value, bool | np.bool_):
+        return True
+    if isinstance(value, np.ndarray):
+        return value.dtype == bool
+    if isinstance(value, list | tuple) and value:
+        return any(_is_boolean(item) for item in value)
+    return False
+
+
 def finite_array(name: str, value, *, allow_inf: bool = False) -> np.ndarray:
-    """``value`` as a float array; ``ValueError`` if it is not numeric or holds NaN (or inf)."""
+    """``value`` as a float array; ``ValueError`` if it is not numeric (booleans are not
+    numbers here: a flag is never a length) or holds NaN (or inf)."""
+    if _is_boolean(value):
+        raise ValueError(f"{name} must be numeric (not a boolean), got {value!r}")
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
@@ -106,8 +126,26 @@ def shaped(name: str, value, trailing: Sequence[int], *, allow_inf: bool = False
     return arr
 
 
+def finite_result(names: str, *values):
+    """``ValueError`` naming ``names`` (the inputs that set the scale) unless every value is
+    finite: a result that overflowed to infinity or became NaN never leaves the library.
+
+    Compute the values under ``np.errstate(all="ignore")`` and call this on them.
+
+    >>> finite_result("dt", np.array([1.0, np.inf]))
+    Traceback (most recent call last):
+    ...
+    ValueError: dt is out of range: the result overflows (not a finite number)
+    """
+    for value in values:
+        if not np.all(np.isfinite(np.asarray(value, dtype=float))):
+            raise ValueError(f"{names} is out of range: the result overflows (not a finite "
+                             "number)")
+    return values[0] if len(values) == 1 else values
+
+
 def choice(name: str, value, options: Sequence[str]) -> str:
     """``value`` if it is one of ``options``; ``ValueError`` listing them otherwise."""
-    if value not in options:
+    if not isinstance(value, str) or value not in options:
         raise ValueError(f"{name} must be one of {', '.join(map(repr, options))}; got {value!r}")
     return value

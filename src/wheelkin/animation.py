@@ -37,20 +37,30 @@ _ICONS = {
 _FRAME = re.compile(r'(frames\[\d+\] = "data:image/png;base64,)((?:[A-Za-z0-9+/=]|\\\n)+)(")')
 
 
-def _palette_frame(match: re.Match, colors: int) -> str:
-    """One embedded PNG frame, re-encoded with an adaptive palette of ``colors`` colours."""
+def _palette_frame(match: re.Match, colors: int, min_font_pt: float | None = None) -> str:
+    """One embedded PNG frame, re-encoded with an adaptive palette of ``colors`` colours.
+
+    The frame keeps its dpi (the PNG's pHYs chunk) and, when given, records the smallest font
+    size drawn in it (a ``wheelkin:min_font_pt`` text chunk), as every figure of the book does.
+    """
     import base64
     import io
 
     from PIL import Image
+    from PIL.PngImagePlugin import PngInfo
 
     if not 2 <= colors <= 256:
         raise ValueError(f"colors must be in [2, 256], got {colors}")
     data = base64.b64decode(match.group(2).replace("\\\n", ""))
     image = Image.open(io.BytesIO(data)).convert("RGB")
+    dpi = Image.open(io.BytesIO(data)).info.get("dpi")
     quantised = image.quantize(colors=colors, method=Image.Quantize.MEDIANCUT, dither=0)
+    info = PngInfo()
+    if min_font_pt is not None:
+        info.add_text("wheelkin:min_font_pt", f"{min_font_pt:g}")
     buf = io.BytesIO()
-    quantised.save(buf, format="png", optimize=True)
+    extra = {"dpi": tuple(round(d) for d in dpi)} if dpi else {}
+    quantised.save(buf, format="png", optimize=True, pnginfo=info, **extra)
     return match.group(1) + base64.b64encode(buf.getvalue()).decode("ascii") + match.group(3)
 
 
@@ -106,8 +116,11 @@ def to_html(
     if default_mode not in ("loop", "once", "reflect"):
         raise ValueError(f"default_mode must be 'loop', 'once' or 'reflect', got {default_mode!r}")
     new_id = stable_id(name)
+    from wheelkin import style
+
     try:
-        raw = anim.to_jshtml(fps=fps, embed_frames=True, default_mode=default_mode)
+        raw = _jshtml_checked(anim, name, fps=fps, default_mode=default_mode)
+        smallest = style.min_font_pt(anim._fig)
     finally:
         plt.close(anim._fig)
     match = _UUID.search(raw)
@@ -120,7 +133,7 @@ def to_html(
     for icon, text in _ICONS.items():
         out = out.replace(f'<i class="fa {icon}"></i>', f'<span aria-hidden="true">{text}</span>')
     if colors is not None:
-        out = _FRAME.sub(lambda m: _palette_frame(m, int(colors)), out)
+        out = _FRAME.sub(lambda m: _palette_frame(m, int(colors), smallest), out)
     out = out.replace(
         f'<img id="_anim_img{new_id}">',
         f'<img id="_anim_img{new_id}" alt="{_html.escape(alt, quote=True)}">',
@@ -137,6 +150,37 @@ def to_html(
             "use fewer frames, a smaller figure or a lower dpi"
         )
     return out
+
+
+def _jshtml_checked(anim: Animation, name: str, **kwargs) -> str:
+    """``anim.to_jshtml(**kwargs)``; with the figure check on (:func:`wheelkin.style.checking`),
+    the first and the last frame are checked as they are drawn, and a problem raises
+    :class:`wheelkin.style.FigureCheckError` naming the animation and the frame."""
+    from matplotlib.animation import HTMLWriter
+
+    from wheelkin import style
+
+    if not style.checking():
+        return anim.to_jshtml(embed_frames=True, **kwargs)
+    found: dict[str, list[str]] = {}
+    original = HTMLWriter.grab_frame
+
+    def grab_frame(writer, **savefig_kwargs):
+        out = original(writer, **savefig_kwargs)
+        # The frame was just drawn (saved): measure its texts without drawing it again.
+        found["first" if "first" not in found else "last"] = style.check_figure(
+            writer.fig, draw=False)
+        return out
+
+    HTMLWriter.grab_frame = grab_frame  # only while this animation is written
+    try:
+        raw = anim.to_jshtml(embed_frames=True, **kwargs)
+    finally:
+        HTMLWriter.grab_frame = original
+    problems = [f"{frame} frame: {p}" for frame in ("first", "last") for p in found.get(frame, [])]
+    if problems:
+        raise style.FigureCheckError(f"animation {name!r}: " + "; ".join(problems))
+    return raw
 
 
 def show(anim: Animation, **kwargs):

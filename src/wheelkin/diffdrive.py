@@ -37,20 +37,27 @@ Sign convention: the firmware and this module agree, :math:`\omega > 0` turns le
 (counter-clockwise seen from above) and makes the right wheel the faster one.
 
 >>> wheel_speeds(0.2, 1.0, 0.085)
-(0.1575, 0.2425)
->>> body_twist(0.1575, 0.2425, 0.085)
+WheelSpeeds(left=0.1575, right=0.2425)
+>>> v, omega = body_twist(0.1575, 0.2425, 0.085)
+>>> v, omega
 (0.2, 1.0)
+
+Functions that return several named quantities return a :class:`typing.NamedTuple`
+(:class:`WheelSpeeds`, :class:`BodyTwist`, ...): they unpack as before and also have names.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin import _validate as _v
+from wheelkin import _kernels
+from wheelkin._kernels import c_div, diff_drive_wheel_speeds
 from wheelkin.units import RADON_ULZER_STEPS_PER_M
 
 __all__ = [
@@ -60,11 +67,15 @@ __all__ = [
     "INT32_METHODS",
     "INT32_MIN",
     "RADON_ULZER_CONSTANTS",
+    "BodyTwist",
     "DiffDriveConstants",
     "FixedPointWheelSpeeds",
+    "SkidSteerWheelSpeeds",
+    "WheelSpeeds",
     "body_twist",
     "body_twist_steps",
     "c_divide",
+    "desaturate",
     "int32_omega_limit",
     "q16_turn_factor",
     "skid_steer_body_twist",
@@ -155,7 +166,31 @@ def _broadcast(**arrays) -> list[np.ndarray]:
 # SI
 # --------------------------------------------------------------------------------------------
 
-def wheel_speeds(v, omega, track_width):
+class WheelSpeeds(NamedTuple):
+    """Left and right wheel ground speeds (m/s), each a float or an array."""
+
+    left: Any
+    right: Any
+
+
+class BodyTwist(NamedTuple):
+    """A differential drive's twist: forward speed ``v`` (m/s) and yaw rate ``omega`` (rad/s,
+    counter-clockwise positive), each a float or an array."""
+
+    v: Any
+    omega: Any
+
+
+class SkidSteerWheelSpeeds(NamedTuple):
+    """Ground speeds (m/s) of a skid steer's four wheels, FL, FR, RL, RR."""
+
+    fl: Any
+    fr: Any
+    rl: Any
+    rr: Any
+
+
+def wheel_speeds(v: ArrayLike, omega: ArrayLike, track_width: float) -> WheelSpeeds:
     r"""Left and right wheel ground speeds of a differential drive, from a body twist.
 
     .. math:: v_L = v - \omega \frac{W}{2}, \qquad v_R = v + \omega \frac{W}{2}
@@ -172,32 +207,61 @@ def wheel_speeds(v, omega, track_width):
 
     Returns
     -------
-    v_left, v_right : float or numpy.ndarray
-        Ground speeds of the left and right wheel, m/s (floats for scalar input).
+    WheelSpeeds
+        ``(left, right)``: ground speeds of the left and right wheel, m/s (floats for scalar
+        input).
 
     Examples
     --------
     Turning on the spot to the left at 1 rad/s, W = 85 mm:
 
     >>> wheel_speeds(0.0, 1.0, 0.085)
-    (-0.0425, 0.0425)
+    WheelSpeeds(left=-0.0425, right=0.0425)
     >>> left, right = wheel_speeds([0.1, 0.2], [0.0, -2.0], 0.085)
     >>> right
     array([0.1  , 0.115])
     """
     v_arr, w_arr = _broadcast(v=v, omega=omega)
-    half = 0.5 * _v.positive("track_width", track_width)
-    return _out(v_arr - w_arr * half), _out(v_arr + w_arr * half)
+    left, right = diff_drive_wheel_speeds(v_arr, w_arr, _v.positive("track_width", track_width))
+    return WheelSpeeds(_out(left), _out(right))
 
 
-def _wheel_speeds_unchecked(v: float, omega: float, track_width: float) -> tuple[float, float]:
-    """:func:`wheel_speeds` for Python floats, unvalidated (for inner loops whose inputs are
-    already checked): the same operations, so the same result to the last bit."""
-    half = 0.5 * track_width
-    return v - omega * half, v + omega * half
+def desaturate(v_left: ArrayLike, v_right: ArrayLike, max_speed: float) -> WheelSpeeds:
+    r"""Scale both wheel speeds together so that neither exceeds ``max_speed`` in size.
+
+    .. math:: (v_L', v_R') = (v_L, v_R)\,\min\left(1,
+              \frac{v_{max}}{\max(|v_L|, |v_R|)}\right)
+
+    WPILib's ``DifferentialDriveWheelSpeeds.desaturate``: the ratio of the two speeds, and so
+    the curvature :math:`\omega/v` of the path, is kept; the robot drives the same arc,
+    slower. Works as well on wheel rates (rad/s) with a rate limit.
+
+    Parameters
+    ----------
+    v_left, v_right : float or array_like
+        Wheel ground speeds, m/s (broadcast together).
+    max_speed : float
+        The largest allowed size, m/s (> 0).
+
+    Returns
+    -------
+    WheelSpeeds
+        ``(left, right)``, m/s (floats for scalar input).
+
+    Examples
+    --------
+    >>> desaturate(1.0, 3.0, 2.0)
+    WheelSpeeds(left=0.6666666666666666, right=2.0)
+    >>> desaturate(0.5, -1.0, 2.0)  # within the limit: unchanged
+    WheelSpeeds(left=0.5, right=-1.0)
+    """
+    left, right = _broadcast(v_left=v_left, v_right=v_right)
+    out = _kernels.desaturate(np.stack([left, right], axis=-1),
+                              _v.positive("max_speed", max_speed))
+    return WheelSpeeds(_out(out[..., 0]), _out(out[..., 1]))
 
 
-def body_twist(v_left, v_right, track_width):
+def body_twist(v_left: ArrayLike, v_right: ArrayLike, track_width: float) -> BodyTwist:
     r"""Body twist of a differential drive from its wheel ground speeds; inverse of
     :func:`wheel_speeds`.
 
@@ -212,20 +276,22 @@ def body_twist(v_left, v_right, track_width):
 
     Returns
     -------
-    v, omega : float or numpy.ndarray
-        Forward speed of the axle midpoint (m/s) and yaw rate (rad/s, counter-clockwise +).
+    BodyTwist
+        ``(v, omega)``: forward speed of the axle midpoint (m/s) and yaw rate (rad/s,
+        counter-clockwise +).
 
     Examples
     --------
     >>> body_twist(0.1, 0.3, 0.1)
-    (0.2, 2.0)
+    BodyTwist(v=0.2, omega=2.0)
     """
     left, right = _broadcast(v_left=v_left, v_right=v_right)
     w = _v.positive("track_width", track_width)
-    return _out(0.5 * (left + right)), _out((right - left) / w)
+    return BodyTwist(_out(0.5 * (left + right)), _out((right - left) / w))
 
 
-def skid_steer_wheel_speeds(v, omega, track_width):
+def skid_steer_wheel_speeds(v: ArrayLike, omega: ArrayLike,
+                            track_width: float) -> SkidSteerWheelSpeeds:
     r"""Wheel ground speeds of an ideal skid steer (four wheels, two per side).
 
     Kinematically a skid steer is a differential drive whose left pair (FL, RL) and right pair
@@ -247,19 +313,21 @@ def skid_steer_wheel_speeds(v, omega, track_width):
 
     Returns
     -------
-    fl, fr, rl, rr : float or numpy.ndarray
-        Ground speeds in the order front-left, front-right, rear-left, rear-right, m/s.
+    SkidSteerWheelSpeeds
+        ``(fl, fr, rl, rr)``: ground speeds front-left, front-right, rear-left, rear-right,
+        m/s.
 
     Examples
     --------
-    >>> skid_steer_wheel_speeds(0.5, 1.0, 0.12)
+    >>> tuple(skid_steer_wheel_speeds(0.5, 1.0, 0.12))
     (0.44, 0.56, 0.44, 0.56)
     """
     left, right = wheel_speeds(v, omega, track_width)
-    return left, right, left, right
+    return SkidSteerWheelSpeeds(left, right, left, right)
 
 
-def skid_steer_body_twist(fl, fr, rl, rr, track_width):
+def skid_steer_body_twist(fl: ArrayLike, fr: ArrayLike, rl: ArrayLike, rr: ArrayLike,
+                          track_width: float) -> BodyTwist:
     r"""Body twist of an ideal skid steer from its four wheel ground speeds.
 
     Each side's speed is the mean of its two wheels, then :func:`body_twist`:
@@ -275,7 +343,7 @@ def skid_steer_body_twist(fl, fr, rl, rr, track_width):
     Examples
     --------
     >>> skid_steer_body_twist(0.44, 0.56, 0.44, 0.56, 0.12)
-    (0.5, 1.0)
+    BodyTwist(v=0.5, omega=1.0)
     """
     a_fl, a_fr, a_rl, a_rr = _broadcast(fl=fl, fr=fr, rl=rl, rr=rr)
     return body_twist(0.5 * (a_fl + a_rl), 0.5 * (a_fr + a_rr), track_width)
@@ -472,14 +540,9 @@ def c_divide(numerator, denominator):
                          f"got {num.shape} and {den.shape}") from None
     if np.any(den == 0):
         raise ValueError("denominator must not be 0")
-    flat = [_c_div(int(a), int(b)) for a, b in zip(num.ravel(), den.ravel(), strict=True)]
+    flat = [c_div(int(a), int(b)) for a, b in zip(num.ravel(), den.ravel(), strict=True)]
     out = np.array(flat, dtype=np.int64).reshape(num.shape)
     return int(out) if out.ndim == 0 else out
-
-
-def _c_div(a: int, b: int) -> int:
-    q = abs(a) // abs(b)
-    return q if (a >= 0) == (b > 0) else -q
 
 
 def _integers(name: str, values, limits: tuple[int, int] | None) -> np.ndarray:
@@ -674,11 +737,11 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
             turn = -turn if w_i < 0 else turn
             centre = v_i
         elif method == "readme_order":
-            turn = _c_div(mul(_c_div(mul(w_i, base), 2 * 1000), enc), 1000)
-            centre = _c_div(v_i, 2)
+            turn = c_div(mul(c_div(mul(w_i, base), 2 * 1000), enc), 1000)
+            centre = c_div(v_i, 2)
         else:
-            turn = _c_div(mul(mul(w_i, base), enc), 2 * 1000 * 1000)
-            centre = _c_div(v_i, 2) if method == "firmware" else v_i
+            turn = c_div(mul(mul(w_i, base), enc), 2 * 1000 * 1000)
+            centre = c_div(v_i, 2) if method == "firmware" else v_i
         left, right = centre - turn, centre + turn
         for value in (left, right):
             if not INT16_MIN <= value <= INT16_MAX:
@@ -720,7 +783,10 @@ def speed_resolution(window, steps_per_m):
     t = _v.finite_array("window", window)
     if np.any(t <= 0):
         raise ValueError(f"window must be > 0 s, got {window!r}")
-    return _out(1.0 / (t * _v.positive("steps_per_m", steps_per_m)))
+    k = _v.positive("steps_per_m", steps_per_m)
+    with np.errstate(all="ignore"):
+        out = 1.0 / (t * k)
+    return _out(_v.finite_result("window and steps_per_m", out))
 
 
 def time_to_count(min_steps, speed, steps_per_m):
@@ -750,7 +816,10 @@ def time_to_count(min_steps, speed, steps_per_m):
     s = _v.finite_array("speed", speed)
     if np.any(s == 0):
         raise ValueError(f"speed must be non-zero (a wheel at rest never counts), got {speed!r}")
-    return _out(m / (_v.positive("steps_per_m", steps_per_m) * np.abs(s)))
+    k = _v.positive("steps_per_m", steps_per_m)
+    with np.errstate(all="ignore"):
+        out = m / (k * np.abs(s))
+    return _out(_v.finite_result("speed and steps_per_m", out))
 
 
 def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None, *,

@@ -55,14 +55,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
+from wheelkin import _kernels
 from wheelkin import _validate as v
+from wheelkin._kernels import arc_factors
 from wheelkin.units import FOOT, INCH, MM
 
 __all__ = [
     "Pose",
+    "PoseRate",
     "Twist",
     "compose",
     "firmware_pose_to_ours",
@@ -85,12 +89,13 @@ __all__ = [
     "relative",
     "rover_radius_to_ours",
     "rover_twist",
+    "pose_rate",
     "se2_exp",
+    "se2_log",
     "transform_points",
     "wrap_angle",
 ]
 
-_TWO_PI = 2.0 * math.pi
 
 
 # --------------------------------------------------------------------------------------------
@@ -235,12 +240,7 @@ def wrap_angle(angle):
     >>> wrap_angle([-math.pi, 0.0, 7.0])
     array([3.14159265, 0.        , 0.71681469])
     """
-    a = v.finite_array("angle", angle)
-    inside = (a > -math.pi) & (a <= math.pi)
-    r = np.remainder(a + math.pi, _TWO_PI) - math.pi  # [-pi, pi] after rounding
-    r = np.where(r <= -math.pi, r + _TWO_PI, r)
-    r = np.minimum(r, math.pi)
-    out = np.where(inside, a, r)
+    out = _kernels.wrap_angle(v.finite_array("angle", angle))
     return float(out) if out.ndim == 0 else out
 
 
@@ -362,16 +362,6 @@ def icr_array(twists) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 
 
-def _sin_over(phi):
-    """sin(phi)/phi and (1 - cos(phi))/phi = 2 sin(phi/2)**2/phi, without cancellation."""
-    phi = np.asarray(phi, dtype=float)
-    zero = phi == 0.0
-    p = np.where(zero, 1.0, phi)
-    a = np.where(zero, 1.0, np.sin(p) / p)
-    b = np.where(zero, 0.0, 2.0 * np.sin(p / 2.0) ** 2 / p)
-    return a, b
-
-
 def se2_exp(twist, dt):
     """The body-frame displacement after holding ``twist`` constant for ``dt`` seconds.
 
@@ -385,8 +375,9 @@ def se2_exp(twist, dt):
                     + v_y \\frac{\\sin\\varphi}{\\varphi}\\right),\\quad
         \\Delta\\theta = \\varphi
 
-    (the fractions tend to 1 and 0 as :math:`\\varphi \\to 0`; :math:`1-\\cos\\varphi` is
-    computed as :math:`2\\sin^2(\\varphi/2)` to avoid cancellation for small turns).
+    (the fractions tend to 1 and 0 as :math:`\\varphi \\to 0`; they come from
+    :func:`wheelkin._kernels.arc_factors`, the library's one small-angle strategy, within a
+    few units in the last place of the exact values).
 
     Parameters
     ----------
@@ -412,11 +403,114 @@ def se2_exp(twist, dt):
     is_twist = isinstance(twist, Twist)
     vx, vy, w = _twist_columns("twist", twist)
     t = v.finite("dt", dt)
-    a, b = _sin_over(np.asarray(w * t, dtype=float))
-    dx = t * (vx * a - vy * b)
-    dy = t * (vx * b + vy * a)
-    dth = np.asarray(w * t, dtype=float)
+    with np.errstate(all="ignore"):
+        a, b = arc_factors(np.asarray(w * t, dtype=float))
+        dx = t * (vx * a - vy * b)
+        dy = t * (vx * b + vy * a)
+        dth = np.asarray(w * t, dtype=float)
+    v.finite_result("twist and dt", dx, dy, dth)
     return _pack(Pose, (dx, dy, dth), is_twist)
+
+
+def se2_log(delta, dt=1.0):
+    r"""The constant body twist that moves the body by ``delta`` in ``dt`` seconds: the inverse
+    of :func:`se2_exp`.
+
+    With :math:`\varphi = \Delta\theta` and :math:`h = (\varphi/2)\cot(\varphi/2)` (1 at
+    :math:`\varphi = 0`):
+
+    .. math::
+        v_x = \frac{h\,\Delta x + \tfrac{\varphi}{2}\,\Delta y}{\Delta t},\quad
+        v_y = \frac{-\tfrac{\varphi}{2}\,\Delta x + h\,\Delta y}{\Delta t},\quad
+        \omega = \frac{\varphi}{\Delta t}
+
+    (the arc about the ICR that ends at :math:`(\Delta x, \Delta y)` after turning by
+    :math:`\varphi`). :math:`\Delta\theta` is taken as given, not wrapped: a displacement
+    that turned by more than half a turn has a different twist than its wrapped heading
+    suggests, and a whole turn (:math:`|\Delta\theta| \ge 2\pi`) has none that is unique.
+
+    Parameters
+    ----------
+    delta : Pose or array_like, shape (..., 3)
+        Body-frame displacement :math:`(\Delta x, \Delta y, \Delta\theta)` (m, m, rad),
+        :math:`|\Delta\theta| < 2\pi`.
+    dt : float
+        Duration in seconds (> 0).
+
+    Returns
+    -------
+    Twist or numpy.ndarray, shape (..., 3)
+        :math:`(v_x, v_y, \omega)` (m/s, m/s, rad/s); a Twist for a Pose.
+
+    Examples
+    --------
+    The quarter circle of radius 1 m of :func:`se2_exp`'s example, back to its twist:
+
+    >>> se2_log(Pose(1.0, 1.0, math.pi / 2))
+    Twist(vx=1.5707963267948966, vy=0.0, omega=1.5707963267948966)
+    """
+    is_pose = isinstance(delta, Pose)
+    dx, dy, phi = (np.asarray(c, dtype=float) for c in _pose_columns("delta", delta))
+    t = v.positive("dt", dt)
+    if np.any(np.abs(phi) >= 2 * math.pi):
+        raise ValueError(f"delta's heading change must be in (-2 pi, 2 pi), got {phi!r}")
+    half = 0.5 * phi
+    h = np.cos(half) / arc_factors(half)[0]  # (phi/2) cot(phi/2) = cos(u) / (sin(u)/u)
+    out = ((h * dx + half * dy) / t, (-half * dx + h * dy) / t, phi / t)
+    return _pack(Twist, [_no_negative_zero(o) for o in out], is_pose)
+
+
+class PoseRate(NamedTuple):
+    r"""The world-frame derivative of a pose: :math:`(\dot x, \dot y, \dot\theta)` in m/s,
+    m/s, rad/s."""
+
+    x_dot: float
+    y_dot: float
+    theta_dot: float
+
+
+def pose_rate(theta, twist):
+    r"""The world-frame rate of change of the pose of a body with heading ``theta`` moving
+    with the body-frame ``twist``.
+
+    .. math::
+        \dot x = v_x\cos\theta - v_y\sin\theta,\quad
+        \dot y = v_x\sin\theta + v_y\cos\theta,\quad
+        \dot\theta = \omega
+
+    (the twist rotated into the world frame; integrating it over time with the twist held
+    constant gives :func:`se2_exp` composed onto the pose).
+
+    Parameters
+    ----------
+    theta : float or array_like
+        Heading :math:`\theta` (rad), counter-clockwise from world +x.
+    twist : Twist or array_like, shape (..., 3)
+        :math:`(v_x, v_y, \omega)` in the body frame (m/s, m/s, rad/s); broadcast against
+        ``theta``.
+
+    Returns
+    -------
+    PoseRate or numpy.ndarray, shape (..., 3)
+        :math:`(\dot x, \dot y, \dot\theta)` in the world frame; a :class:`PoseRate`
+        (a NamedTuple) when ``theta`` is a number and ``twist`` a Twist or shape (3,).
+
+    Examples
+    --------
+    Facing north (+y), driving forward at 2 m/s and sliding left at 1 m/s:
+
+    >>> r = pose_rate(math.pi / 2, Twist(2.0, 1.0, 0.5))
+    >>> print(f"{r.x_dot:.6f} {r.y_dot:.6f} {r.theta_dot:.6f}")
+    -1.000000 2.000000 0.500000
+    """
+    th = v.finite_array("theta", theta)
+    vx, vy, w = _twist_columns("twist", twist)
+    c, s = np.cos(th), np.sin(th)
+    out = [_no_negative_zero(np.asarray(o, dtype=float))
+           for o in np.broadcast_arrays(vx * c - vy * s, vx * s + vy * c, w + 0.0 * th)]
+    if out[0].ndim == 0:
+        return PoseRate(*(float(o) for o in out))
+    return np.stack(out, axis=-1)
 
 
 def compose(pose, delta):
@@ -663,7 +757,9 @@ def rover_twist(radius_in, centre_speed_in_per_s):
     vx = speed * INCH
     straight = np.isinf(r)
     big_r = np.where(straight, 1.0, -r * INCH)
-    omega = np.where(straight, 0.0, vx / big_r)
+    with np.errstate(all="ignore"):
+        omega = np.where(straight, 0.0, vx / big_r)
+    v.finite_result("radius_in", omega)
     return _pack(Twist, (vx, np.zeros_like(vx), _no_negative_zero(omega)), scalar)
 
 

@@ -54,8 +54,11 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin import _validate as v
+from wheelkin import _kernels
+from wheelkin._kernels import arc_factors, shift_twist
 from wheelkin.frames import Pose, Twist, wrap_angle
 from wheelkin.units import FOOT
 
@@ -70,6 +73,7 @@ __all__ = [
     "SpeedLimit",
     "circle_speed",
     "circle_twist",
+    "desaturate",
     "fighting_component",
     "forward_kinematics",
     "forward_matrix",
@@ -238,7 +242,9 @@ def forward_matrix(geometry: MecanumGeometry) -> np.ndarray:
     return rows * (g.wheel_radius / 4.0)
 
 
-def inverse_kinematics(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
+def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
+                       geometry: MecanumGeometry, *,
+                       centre_of_rotation: ArrayLike | None = None) -> np.ndarray:
     r"""Wheel angular rates (FL, FR, RL, RR), rad/s, that produce the body twist.
 
     .. math::
@@ -251,14 +257,21 @@ def inverse_kinematics(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
     with :math:`k = b + a\cot\gamma`; at :math:`\gamma = 45^\circ`, :math:`\cot\gamma = 1` and
     :math:`k = a + b`. Positive rates roll the wheel forward (+x).
 
+    With a ``centre_of_rotation`` :math:`c = (c_x, c_y)` (as WPILib's
+    ``MecanumDriveKinematics.toWheelSpeeds`` has), :math:`(v_x, v_y)` is the velocity of the
+    point :math:`c` and the body turns about it at :math:`\omega`; the centre's velocity is
+    then :math:`(v_x + \omega c_y,\; v_y - \omega c_x)`, which goes into the equations above.
+
     Parameters
     ----------
     vx, vy : float or array_like
-        Body velocity of the centre, m/s (x forward, y left).
+        Body velocity of the centre (or of ``centre_of_rotation``), m/s (x forward, y left).
     omega : float or array_like
         Yaw rate, rad/s, counter-clockwise positive.
         The three are broadcast together.
     geometry : MecanumGeometry
+    centre_of_rotation : array_like, shape (2,), optional
+        :math:`(c_x, c_y)`, m, in the body frame; default the centre (0, 0).
 
     Returns
     -------
@@ -275,10 +288,21 @@ def inverse_kinematics(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
     >>> inverse_kinematics([1.0, 0.0], 0.0, [0.0, 1.0], g)
     array([[20., 20., 20., 20.],
            [-7.,  7., -7.,  7.]])
+
+    Turning about the front-left wheel (a = 0.2 m ahead, b = 0.15 m left) leaves it still:
+
+    >>> np.round(inverse_kinematics(0.0, 0.0, 1.0, g, centre_of_rotation=(0.2, 0.15)), 12) + 0
+    array([ 0.,  6., -8., 14.])
     """
     g = _geometry(geometry)
     vx_a, vy_a, w_a = _broadcast(vx=v.finite_array("vx", vx), vy=v.finite_array("vy", vy),
                                  omega=v.finite_array("omega", omega))
+    if centre_of_rotation is not None:
+        c = v.finite_array("centre_of_rotation", centre_of_rotation)
+        if c.shape != (2,):
+            raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, got "
+                             f"shape {c.shape}")
+        vx_a, vy_a, w_a = shift_twist(vx_a, vy_a, w_a, c[0], c[1])
     twist = np.stack([vx_a, vy_a, w_a], axis=-1)
     return twist @ inverse_matrix(g).T
 
@@ -505,6 +529,36 @@ def limit_speed(twist, max_speed, geometry: MecanumGeometry | None = None, *,
                       f"{head}: scaled by {s:.3f} (same path, slower)")
 
 
+def desaturate(wheel_rates: ArrayLike, max_rate: float) -> np.ndarray:
+    r"""Scale all four wheel rates together so that none exceeds ``max_rate`` in size.
+
+    .. math:: \varphi_i' = \varphi_i\,\min\left(1, \frac{\varphi_{max}}
+              {\max_j |\varphi_j|}\right)
+
+    WPILib's ``MecanumDriveWheelSpeeds.desaturate``: the ratios of the wheel rates are kept,
+    so the vehicle drives the same path (the same direction and curvature), only slower.
+    Works as well on rim speeds (m/s) with a speed limit.
+
+    Parameters
+    ----------
+    wheel_rates : array_like, shape (..., 4)
+        FL, FR, RL, RR, rad/s (or m/s).
+    max_rate : float
+        The largest allowed size, same unit, > 0.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> desaturate([10.0, 20.0, -40.0, 5.0], 20.0)
+    array([  5. ,  10. , -20. ,   2.5])
+    """
+    rates = v.shaped("wheel_rates", wheel_rates, (4,))
+    return _kernels.desaturate(rates, v.positive("max_rate", max_rate))
+
+
 def circle_speed(radius, lap_time) -> np.ndarray:
     r"""Speed along a circle driven once in ``lap_time``: :math:`v = 2\pi|R|/T`, m/s.
 
@@ -529,9 +583,12 @@ def _circle_args(radius, lap_time) -> tuple[np.ndarray, np.ndarray]:
     t_a = v.finite_array("lap_time", lap_time)
     if np.any(r_a == 0):
         raise ValueError(f"radius must be a non-zero finite number (m), got {radius!r}")
-    if np.any(t_a <= 0):
-        raise ValueError(f"lap_time must be a finite number > 0 (s), got {lap_time!r}")
+    if np.any(t_a < np.finfo(float).tiny):  # not subnormal: 1/T must not overflow
+        raise ValueError(f"lap_time must be a finite number > 0 (s), not subnormal, got "
+                         f"{lap_time!r}")
     r_a, t_a = _broadcast(radius=r_a, lap_time=t_a)
+    with np.errstate(all="ignore"):
+        v.finite_result("radius and lap_time", 2.0 * np.pi * r_a / t_a)
     return r_a, t_a
 
 
@@ -660,8 +717,7 @@ def go_to_point_twist(pose, goal, speed, max_omega, dt=None) -> np.ndarray:
     else:
         f = step / np.maximum(safe_t, step)  # min(dt / T, 1) without overflow
         phi = f * dth
-        a = np.sinc(phi / np.pi)                             # sin(phi)/phi
-        b = np.sin(phi / 2) * np.sinc(phi / (2 * np.pi))     # (1 - cos(phi))/phi
+        a, b = arc_factors(phi)  # sin(phi)/phi, (1 - cos(phi))/phi: the arc kernel's
         norm = a * a + b * b
         ex, ey = f * bx, f * by
         out = np.stack([(a * ex + b * ey) / norm / step, (-b * ex + a * ey) / norm / step,

@@ -54,18 +54,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin import _validate
+from wheelkin.units import INCH
 
 __all__ = [
     "CORNER_NAMES",
     "HARD_STOP",
     "OSR_GEOMETRY",
+    "OSR_GEOMETRY_SI",
     "SOFTWARE_MIN_RADIUS",
     "STRAIGHT_THRESHOLD",
     "WHEEL_NAMES",
+    "RoverCommand",
     "RoverGeometry",
     "body_twist",
     "centre_speed",
@@ -76,6 +81,7 @@ __all__ = [
     "radius_to_command",
     "sandbox_commands",
     "wheel_distances",
+    "wheel_commands",
     "wheel_positions",
     "wheel_speeds",
 ]
@@ -138,6 +144,9 @@ class RoverGeometry:
 
 #: The Open Source Rover's base model (inches), from the document's equation 5.
 OSR_GEOMETRY = RoverGeometry(d1=7.254, d2=10.5, d3=10.5, d4=10.073)
+#: The same rover in metres, for the SI functions (:func:`wheel_commands`).
+OSR_GEOMETRY_SI = RoverGeometry(d1=7.254 * INCH, d2=10.5 * INCH, d3=10.5 * INCH,
+                                d4=10.073 * INCH)
 
 
 def _geometry(geometry) -> RoverGeometry:
@@ -232,6 +241,14 @@ def _radius(radius, geometry: RoverGeometry, max_corner_angle: float) -> np.ndar
             f"{math.degrees(max_corner_angle):.6g} degree corner stops allow), or be +-inf to "
             f"drive straight; got {first!r}")
     return r
+
+
+def _scalar_radius(radius) -> float:
+    """One turning radius (inf allowed, meaning straight) as a float."""
+    r = _validate.finite_array("radius", radius, allow_inf=True)
+    if r.ndim != 0:
+        raise ValueError(f"radius must be one number (inf allowed), got shape {r.shape}")
+    return float(r)
 
 
 def _threshold(straight_threshold) -> float:
@@ -538,8 +555,9 @@ def body_twist(radius, speed_in_per_s, geometry: RoverGeometry = OSR_GEOMETRY,
 
     g = _geometry(geometry)
     threshold = _threshold(straight_threshold)
-    r = float(_validate.finite_array("radius", radius, allow_inf=True))
-    v = float(centre_speed(r, speed_in_per_s, g, threshold, max_corner_angle=max_corner_angle))
+    r = _scalar_radius(radius)
+    x = _validate.finite("speed_in_per_s", speed_in_per_s)
+    v = float(centre_speed(r, x, g, threshold, max_corner_angle=max_corner_angle))
     if abs(r) >= threshold:
         r = math.inf
     return frames.rover_twist(r, v)
@@ -549,7 +567,7 @@ def sandbox_commands(radius, speed_in_per_s, wheel_radius_in: float,
                      geometry: RoverGeometry = OSR_GEOMETRY,
                      straight_threshold: float = STRAIGHT_THRESHOLD, *,
                      max_corner_angle: float = HARD_STOP) -> tuple[np.ndarray, np.ndarray]:
-    """Wheel rates and steering angles for :func:`wheelkin.sandbox.rover`, from a command in
+    """Wheel rates and steering angles for ``wheelkin.sandbox.rover``, from a command in
     the document's convention.
 
     Returns
@@ -570,8 +588,101 @@ def sandbox_commands(radius, speed_in_per_s, wheel_radius_in: float,
     array([-15.74 , -24.779,  15.74 ,  24.779])
     """
     w = _validate.positive("wheel_radius_in", wheel_radius_in)
-    r = float(_validate.finite_array("radius", radius, allow_inf=True))
+    r = _scalar_radius(radius)
     x = _validate.finite("speed_in_per_s", speed_in_per_s)
     speeds = wheel_speeds(r, x, geometry, straight_threshold, max_corner_angle=max_corner_angle)
     angles = corner_angles(r, geometry, straight_threshold, max_corner_angle=max_corner_angle)
     return speeds / w, -angles
+
+
+# --------------------------------------------------------------------------------------------
+# SI and REP-103: metres, m/s, and a steering angle positive to the left
+
+
+class RoverCommand(NamedTuple):
+    """What the rover's motors are told: six wheel ground speeds and four steering angles."""
+
+    #: Ground speeds (m/s) of the wheels LF, LM, LB, RF, RM, RB, shape (..., 6); positive
+    #: rolls the wheel forward along its steered direction.
+    wheel_speeds: np.ndarray
+    #: Steering angles :math:`\delta` (rad) of the corners LF, RF, LB, RB, shape (..., 4);
+    #: positive turns the wheel's front edge to the left (counter-clockwise, REP-103), the
+    #: opposite of the document's :func:`corner_angles`.
+    steering_angles: np.ndarray
+
+
+def wheel_commands(v: ArrayLike, omega: ArrayLike,
+                   geometry: RoverGeometry = OSR_GEOMETRY_SI, *,
+                   max_corner_angle: float = HARD_STOP) -> RoverCommand:
+    r"""Wheel speeds and corner steering angles for a body twist, in SI and REP-103.
+
+    The rover is a rigid body moving with forward speed :math:`v` and yaw rate
+    :math:`\omega` (no sideways velocity: the middle wheels cannot steer). A wheel at
+    :math:`(x_i, y_i)` (the body frame, x forward, y left) moves with
+
+    .. math::
+        \dot p_i = (v - \omega y_i,\; \omega x_i), \qquad
+        \delta_i = \arctan\frac{\omega x_i}{v - \omega y_i}, \qquad
+        V_i = \frac{v - \omega y_i}{\cos\delta_i},
+
+    so each wheel rolls at right angles to the line from the turning centre
+    :math:`(0, R)`, :math:`R = v/\omega` (positive: a left turn). This is the document's
+    maths (:func:`wheel_speeds`, :func:`corner_angles`) with the body centre's speed given
+    instead of the outer middle wheel's, lengths in metres, and the book's signs: :math:`R`
+    and :math:`\delta` positive to the left (:math:`\delta = -\delta_{OSR}`). The OSR
+    software's straight-ahead threshold is not applied.
+
+    Parameters
+    ----------
+    v : float or array_like
+        Forward speed of the body centre, m/s.
+    omega : float or array_like
+        Yaw rate, rad/s, counter-clockwise positive; broadcast with ``v``.
+    geometry : RoverGeometry
+        In metres (default :data:`OSR_GEOMETRY_SI`).
+    max_corner_angle : float
+        The corner hard stop (rad), in (0, pi/2); a twist that needs more raises
+        ``ValueError``.
+
+    Returns
+    -------
+    RoverCommand
+        ``(wheel_speeds, steering_angles)``: m/s, shape (..., 6), wheels LF, LM, LB, RF,
+        RM, RB; rad, shape (..., 4), corners LF, RF, LB, RB.
+
+    Examples
+    --------
+    The document's right turn of r = 30 in, outer middle wheel (LM) at 10 in/s, as a twist:
+
+    >>> tw = body_twist(30.0, 10.0)
+    >>> cmd = wheel_commands(tw.vx, tw.omega)
+    >>> np.round(cmd.wheel_speeds / INCH, 3)  # in/s, the document's table at X = 10
+    array([ 9.659, 10.   ,  9.659,  6.252,  4.973,  6.252])
+    >>> np.round(np.degrees(cmd.steering_angles), 3)  # right turn: negative, to the right
+    array([-15.74 , -24.779,  15.74 ,  24.779])
+    """
+    g = _geometry(geometry)
+    stop = _validate.in_range("max_corner_angle", max_corner_angle, 0.0, math.pi / 2,
+                              inclusive=False)
+    v_a = _validate.finite_array("v", v)
+    w_a = _validate.finite_array("omega", omega)
+    try:
+        v_a, w_a = np.broadcast_arrays(v_a, w_a)
+    except ValueError:
+        raise ValueError(f"v and omega must have shapes that broadcast together, got "
+                         f"{v_a.shape} and {w_a.shape}") from None
+    pos = wheel_positions(g)
+    along = v_a[..., None] - w_a[..., None] * pos[:, 1]  # (..., 6)
+    across = w_a[..., None] * pos[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        delta = np.where(along == 0.0, np.where(across == 0.0, 0.0, math.pi / 2),
+                         np.arctan(across / np.where(along == 0.0, 1.0, along)))
+    corners = delta[..., list(_CORNER_WHEELS)]
+    if np.any(np.abs(corners) > stop * (1.0 + 1e-12)):
+        worst = float(np.max(np.abs(corners)))
+        raise ValueError(f"omega: the turn needs a corner angle of {math.degrees(worst):.6g} "
+                         f"degrees, beyond the {math.degrees(stop):.6g} degree stop (v and "
+                         f"omega give R = v/omega too tight a turn); got v={v!r}, "
+                         f"omega={omega!r}")
+    speeds = np.where(along == 0.0, across, along / np.cos(delta)) + 0.0
+    return RoverCommand(speeds, corners + 0.0)

@@ -26,9 +26,11 @@ that overlap, text that leaves the figure.
 
 from __future__ import annotations
 
+import os
 from typing import Any
 
-__all__ = ["COLUMN_WIDTH_IN", "DPI", "MIN_FONT_PT", "MIN_TEXT_PX", "check_figure", "setup"]
+__all__ = ["CHECK_ENV", "COLUMN_WIDTH_IN", "DPI", "MIN_FONT_PT", "MIN_TEXT_PX", "FigureCheckError",
+           "assert_readable", "check_figure", "checking", "min_font_pt", "setup"]
 
 #: Dots per inch of every figure and animation frame.
 DPI: int = 100
@@ -58,26 +60,152 @@ _RC = {
 
 
 def setup() -> None:
-    """Set matplotlib's defaults to the book's style (call once, in a notebook's first cell)."""
+    """Set matplotlib's defaults to the book's style (call once, in a notebook's first cell).
+
+    In IPython it also makes the inline backend keep the figure's drawn size (no "tight"
+    cropping) and wraps its PNG formatter: every figure a cell shows records its smallest font
+    size in the PNG (a ``wheelkin:min_font_pt`` text chunk, read by
+    ``benchmarks/reading.py``) and, when the environment variable
+    :data:`CHECK_ENV` is ``1`` (``tools/execute_notebooks.py`` sets it), is checked with
+    :func:`check_figure`: a problem raises :class:`FigureCheckError` in the cell that shows it.
+    Animations shown with :func:`wheelkin.animation.show` are checked the same way.
+    """
     import matplotlib as mpl
 
+    global _CHECKING
     mpl.rcParams.update(_RC)
+    _CHECKING = os.environ.get(CHECK_ENV, "") == "1"
     try:  # the inline backend would otherwise crop or pad the figure ("tight" bbox)
         from IPython import get_ipython
 
         shell = get_ipython()
         if shell is not None:
-            shell.run_line_magic("config", "InlineBackend.print_figure_kwargs = {'bbox_inches': None}")
+            import matplotlib.pyplot as plt
+
+            # Load the backend now (pyplot loads it lazily, at the first figure), so that the
+            # inline backend's PNG formatter exists and can be wrapped before any figure.
+            plt.switch_backend(mpl.get_backend())
+            shell.run_line_magic("config",
+                                 "InlineBackend.print_figure_kwargs = {'bbox_inches': None}")
+            _wrap_png_formatter(shell)
     except ImportError:  # pragma: no cover - IPython is there wherever notebooks run
         pass
+
+
+class FigureCheckError(ValueError):
+    """A figure or animation frame that :func:`check_figure` finds hard to read."""
+
+
+#: The environment variable that turns the automatic figure check on (value ``1``).
+CHECK_ENV = "WHEELKIN_CHECK_FIGURES"
+_CHECKING = False
+
+
+def checking() -> bool:
+    """Whether shown figures are checked: :func:`setup` ran with :data:`CHECK_ENV` = ``1``."""
+    return _CHECKING
+
+
+def assert_readable(fig: Any, what: str = "figure", **kwargs: Any) -> None:
+    """Raise :class:`FigureCheckError` naming ``what`` and every problem of ``fig``."""
+    found = check_figure(fig, **kwargs)
+    if found:
+        raise FigureCheckError(f"{what}: " + "; ".join(found))
+
+
+def min_font_pt(fig: Any) -> float | None:
+    """The smallest font size (pt) of the texts ``fig`` draws, or None if it has none."""
+    sizes = [text.get_fontsize() for text in _texts(fig)]
+    return min(sizes) if sizes else None
+
+
+def png_with_text(data: bytes, key: str, value: str) -> bytes:
+    """``data`` (a PNG) with a ``tEXt`` chunk ``key=value`` inserted after its header.
+
+    >>> import struct, zlib
+    >>> ihdr = struct.pack(">IIBBBBB", 1, 1, 8, 0, 0, 0, 0)
+    >>> def chunk(kind, body):
+    ...     crc = zlib.crc32(kind + body)
+    ...     return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", crc)
+    >>> png = b"\\x89PNG\\r\\n\\x1a\\n" + chunk(b"IHDR", ihdr) + chunk(b"IEND", b"")
+    >>> b"tEXtk\\x00v" in png_with_text(png, "k", "v")
+    True
+    """
+    import struct
+    import zlib
+
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise ValueError("data must be a PNG (it does not start with the PNG signature)")
+    length = struct.unpack(">I", data[8:12])[0]
+    end_of_header = 8 + 12 + length
+    body = key.encode("latin-1") + b"\0" + value.encode("latin-1")
+    chunk = (struct.pack(">I", len(body)) + b"tEXt" + body
+             + struct.pack(">I", zlib.crc32(b"tEXt" + body) & 0xFFFFFFFF))
+    return data[:end_of_header] + chunk + data[end_of_header:]
+
+
+def _wrap_png_formatter(shell: Any) -> None:
+    """Wrap the inline backend's PNG formatter of figures (once): record, then check."""
+    import base64
+
+    from matplotlib.figure import Figure
+
+    formatter = shell.display_formatter.formatters.get("image/png")
+    if formatter is None:  # pragma: no cover - a shell without the PNG formatter
+        return
+    try:
+        original = formatter.lookup_by_type(Figure)
+    except KeyError:  # not the inline backend: nothing to wrap
+        return
+    if getattr(original, "_wheelkin_wrapped", False):
+        return
+
+    def png(fig: Any, *args: Any, **kwargs: Any) -> Any:
+        if _CHECKING:
+            assert_readable(fig, "figure")
+        out = original(fig, *args, **kwargs)
+        smallest = min_font_pt(fig)
+        if out is None or smallest is None:
+            return out
+        value = f"{smallest:g}"
+        if isinstance(out, bytes):
+            return png_with_text(out, "wheelkin:min_font_pt", value)
+        if isinstance(out, str):  # base64
+            raw = png_with_text(base64.b64decode(out), "wheelkin:min_font_pt", value)
+            return base64.b64encode(raw).decode("ascii")
+        return out  # pragma: no cover - (data, metadata) tuples of the retina formatter
+
+    png._wheelkin_wrapped = True  # type: ignore[attr-defined]
+    formatter.for_type(Figure, png)
+
+
+def _undrawn_tick_labels(fig: Any) -> set[int]:
+    """ids of the tick labels matplotlib keeps but does not draw: ticks outside the view.
+
+    A locator places ticks beyond the axis limits (a plot of 0..1 has a tick at -0.2); their
+    labels are visible Text objects that are never drawn, so they are not checked.
+    """
+    skip: set[int] = set()
+    for ax in fig.get_axes():
+        for axis in (getattr(ax, "xaxis", None), getattr(ax, "yaxis", None)):
+            if axis is None:
+                continue
+            lo, hi = sorted(axis.get_view_interval())
+            tol = 1e-9 * max(1.0, abs(lo), abs(hi))
+            for tick in axis.get_major_ticks() + axis.get_minor_ticks():
+                loc = tick.get_loc()
+                if loc is None or not lo - tol <= loc <= hi + tol:
+                    skip.update({id(tick.label1), id(tick.label2)})
+    return skip
 
 
 def _texts(fig: Any) -> list[Any]:
     from matplotlib.text import Text
 
     out = []
+    undrawn = _undrawn_tick_labels(fig)
     for text in fig.findobj(Text):
-        if not text.get_visible() or not text.get_text().strip():
+        if not text.get_visible() or not text.get_text().strip() or id(text) in undrawn:
             continue
         # A tick label of a hidden axis, or of an axis without ticks, is never drawn.
         axes = text.axes
@@ -93,6 +221,7 @@ def check_figure(
     min_px: float = MIN_TEXT_PX,
     shown_width_px: float | None = None,
     overlap_px: float = 1.0,
+    draw: bool = True,
 ) -> list[str]:
     """What makes ``fig`` hard to read on the page: a list of problems, empty when none.
 
@@ -107,6 +236,9 @@ def check_figure(
         (:data:`COLUMN_WIDTH_IN` x :data:`DPI` px) if it is wider, since the page scales it down.
     overlap_px : float
         Two texts whose boxes overlap by more than this many pixels in both directions overlap.
+    draw : bool
+        Draw the figure first (default). ``False`` measures it as it was last drawn (for a
+        frame that was just saved: an animation's frame, a panel's redraw).
 
     Returns
     -------
@@ -120,7 +252,9 @@ def check_figure(
         from matplotlib.backends.backend_agg import FigureCanvasAgg
 
         canvas = FigureCanvasAgg(fig)
-    canvas.draw()
+        draw = True
+    if draw:
+        canvas.draw()
     renderer = canvas.get_renderer()
     width_px = fig.get_figwidth() * fig.dpi
     column_px = COLUMN_WIDTH_IN * DPI

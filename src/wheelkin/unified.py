@@ -94,6 +94,7 @@ import numpy as np
 
 from wheelkin import _validate as v
 from wheelkin import rover
+from wheelkin._kernels import shift_twist
 from wheelkin.frames import Twist, fold_half_turn
 from wheelkin.mecanum import ROLLER_SIGNS, MecanumGeometry
 from wheelkin.mecanum import WHEEL_NAMES as MECANUM_WHEEL_NAMES
@@ -105,6 +106,7 @@ __all__ = [
     "WheelConstraint",
     "admissible_twists",
     "body_twist",
+    "car_wheels",
     "constraint_matrix",
     "diff_drive_wheels",
     "from_sandbox",
@@ -409,10 +411,15 @@ def constraint_matrix(wheels) -> np.ndarray:
 # Using the model
 # --------------------------------------------------------------------------------------------
 
-def wheel_rates(wheels, twist) -> np.ndarray:
+def wheel_rates(wheels, twist, *, centre_of_rotation=None) -> np.ndarray:
     r"""Wheel angular rates :math:`\varphi_i` (rad/s) for a body twist, from the rolling rows.
 
     .. math:: \varphi_i = \frac{J_{1,i}\,\xi}{r_{w,i}}
+
+    With a ``centre_of_rotation`` :math:`c` (as WPILib's and ros2_controllers' mecanum and
+    omni kinematics have), :math:`(v_x, v_y)` is the velocity of :math:`c` and the body turns
+    about it: the twist of the body origin is then
+    :math:`\xi = (v_x + \omega c_y,\; v_y - \omega c_x,\; \omega)`.
 
     Steered wheels and casters roll along their *current* steering; whether the twist also
     respects the no-side-slip rows is :func:`slip_residual`'s question (steer them first with
@@ -423,6 +430,8 @@ def wheel_rates(wheels, twist) -> np.ndarray:
     wheels : sequence of WheelConstraint
     twist : Twist or array_like, shape (..., 3)
         :math:`(v_x, v_y, \omega)`, m/s, m/s, rad/s.
+    centre_of_rotation : array_like, shape (2,), optional
+        :math:`(c_x, c_y)` in the body frame, m; default the origin.
 
     Returns
     -------
@@ -438,6 +447,12 @@ def wheel_rates(wheels, twist) -> np.ndarray:
     """
     w = _wheels(wheels)
     xi = _twist(twist)
+    if centre_of_rotation is not None:
+        c = v.finite_array("centre_of_rotation", centre_of_rotation)
+        if c.shape != (2,):
+            raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, got "
+                             f"shape {c.shape}")
+        xi = np.stack(shift_twist(xi[..., 0], xi[..., 1], xi[..., 2], c[0], c[1]), axis=-1)
     radii = np.array([wh.radius for wh in w])
     return (xi @ rolling_matrix(w).T) / radii
 
@@ -789,8 +804,8 @@ def rover_wheels(geometry=None, wheel_radius: float = 0.06,
                  radius_in: float = math.inf) -> tuple[WheelConstraint, ...]:
     r"""The six-wheel rover of :class:`wheelkin.rover.RoverGeometry`, in metres and our sign.
 
-    Wheels LF, LM, LB, RF, RM, RB at the document's positions (:func:`wheelkin.rover.
-    wheel_positions`, inches, times 0.0254); the middle wheels fixed, the corners steered to
+    Wheels LF, LM, LB, RF, RM, RB at the document's positions
+    (:func:`wheelkin.rover.wheel_positions`, inches, times 0.0254); the middle wheels fixed, the corners steered to
     the document's turn of radius ``radius_in`` (:func:`wheelkin.rover.corner_angles`, whose
     positive angle turns the wheel clockwise, so :math:`\delta_i = -\delta_i^{doc}`).
 
@@ -822,6 +837,34 @@ def rover_wheels(geometry=None, wheel_radius: float = 0.06,
                         "steered" if name in corners else "fixed",
                         steering=float(corners.get(name, 0.0)) + 0.0)
         for i, name in enumerate(rover.WHEEL_NAMES))
+
+
+def car_wheels(wheelbase: float, track_width: float, wheel_radius: float,
+               radius: float = math.inf) -> tuple[WheelConstraint, ...]:
+    r"""A car-like vehicle: steered FL :math:`(L, W/2)`, FR :math:`(L, -W/2)`, fixed RL
+    :math:`(0, W/2)`, RR :math:`(0, -W/2)` (the rear-axle midpoint is the origin), the front
+    wheels steered to the ideal Ackermann angles of a turn of signed radius ``radius``
+    (:func:`wheelkin.carlike.ackermann_angles`; ``inf`` straight).
+
+    Its sliding rows have rank 2 for any radius: one degree of mobility, one of steering
+    (the car of :mod:`wheelkin.carlike`).
+
+    Examples
+    --------
+    >>> wheels = car_wheels(0.33, 0.27, 0.05, radius=1.0)
+    >>> [round(math.degrees(w.steering), 3) for w in wheels]
+    [20.882, 16.212, 0.0, 0.0]
+    """
+    from wheelkin import carlike
+
+    L = v.positive("wheelbase", wheelbase)
+    W = v.positive("track_width", track_width)
+    r = v.positive("wheel_radius", wheel_radius)
+    left, right = carlike.ackermann_angles(radius, L, W)
+    return (WheelConstraint("FL", (L, W / 2), 0.0, r, "steered", steering=float(left)),
+            WheelConstraint("FR", (L, -W / 2), 0.0, r, "steered", steering=float(right)),
+            WheelConstraint("RL", (0.0, W / 2), 0.0, r, "fixed"),
+            WheelConstraint("RR", (0.0, -W / 2), 0.0, r, "fixed"))
 
 
 def from_sandbox(spec, steering=None, *, casters: bool = True) -> tuple[WheelConstraint, ...]:
@@ -861,7 +904,7 @@ def from_sandbox(spec, steering=None, *, casters: bool = True) -> tuple[WheelCon
         raise ValueError(f"steering must have shape ({k},) ({', '.join(steered_names)}), "
                          f"got shape {angles.shape}")
     where = dict(zip(steered_names, angles.tolist(), strict=True))
-    kinds = {"mecanum": "swedish"}
+    kinds = {"mecanum": "swedish", "free": "steered"}  # a free-rolling wheel: steered
     out = []
     for wh in sandbox_wheels:
         if wh.kind == "caster" and not casters:

@@ -17,7 +17,14 @@ Constants are the size of one unit in SI, so ``30 * INCH`` is 30 inches in metre
 Traceback (most recent call last):
 ...
 ValueError: unit must be one of 'm', 'mm', 'in', 'ft', 'rad', 'mrad', 'deg', 'm/s', 'mm/s', \
-'in/s', 'ft/s', 'rad/s', 'mrad/s', 'deg/s'; got 'furlong'
+'in/s', 'ft/s', 'rad/s', 'mrad/s', 'deg/s', 'rpm'; got 'furlong'
+
+A motor's speed in revolutions per minute is a rate like any other:
+
+>>> round(to_si(3000.0, "rpm"), 4)  # rad/s
+314.1593
+>>> round(from_si(1.0, "rpm"), 4)  # 1 rad/s in rpm
+9.5493
 """
 
 from __future__ import annotations
@@ -34,6 +41,7 @@ __all__ = [
     "INCH",
     "MM",
     "MRAD",
+    "RPM",
     "RADON_ULZER_COUNTS_PER_MOTOR_REV",
     "RADON_ULZER_GEAR_RATIO",
     "RADON_ULZER_STEPS_PER_M",
@@ -57,6 +65,8 @@ MM = 1e-3
 DEG = math.pi / 180.0
 #: One milliradian in radians.
 MRAD = 1e-3
+#: One revolution per minute in rad/s: :math:`2\pi/60`.
+RPM = 2.0 * math.pi / 60.0
 
 #: Every unit string the library accepts: its size in SI and the SI unit it converts to.
 UNITS: dict[str, tuple[float, str]] = {
@@ -74,6 +84,7 @@ UNITS: dict[str, tuple[float, str]] = {
     "rad/s": (1.0, "rad/s"),
     "mrad/s": (MRAD, "rad/s"),
     "deg/s": (DEG, "rad/s"),
+    "rpm": (RPM, "rad/s"),
 }
 
 #: Radon Ulzer (Pololu Zumo 32U4): encoder counts per revolution of the motor shaft.
@@ -111,7 +122,7 @@ def to_si(value, unit: str):
         Finite number(s) in ``unit``.
     unit : str
         One of the keys of :data:`UNITS`: ``"m"``, ``"mm"``, ``"in"``, ``"ft"``, ``"rad"``,
-        ``"mrad"``, ``"deg"`` and the same over ``"/s"``.
+        ``"mrad"``, ``"deg"``, the same over ``"/s"``, and ``"rpm"`` (revolutions per minute).
 
     Returns
     -------

@@ -1,4 +1,4 @@
-"""The Webots waypoint lab: the arena, the path, the open-loop schedule, a feedback follower.
+"""The Webots waypoint lab: the arena, the path, the open-loop schedule.
 
 The lab :cite:p:`webots_waypoint_lab` drives a four-wheeled differential-drive (skid-steer)
 robot through thirteen waypoints P0 .. P12 of a 4 m x 4 m maze, using straight legs, quarter
@@ -16,10 +16,9 @@ The pieces, in the order the chapter uses them:
 - :func:`schedule`: the lab's open-loop plan, per segment the left and right wheel rates and the
   duration (:class:`WheelCommand`); :func:`quantise` rounds the durations to a control period.
 - :func:`average_encoder_odometry`: the lab's position update, with the pieces it leaves out.
-- :class:`PathFollower`: a feedback follower (pure pursuit along straights and arcs, heading
-  control for turns in place) that returns a body twist for a pose estimate.
-- :class:`ScheduleController` and :class:`FollowerController`: both as controllers of the
-  sandbox (``wheelkin.sandbox``), driving a skid steer's left and right wheel pairs.
+- The feedback follower and the controllers that drive a robot (``PathFollower``,
+  ``ScheduleController``, ``FollowerController``) live in :mod:`wheelkin.follower`; they stay
+  importable from here under their old names.
 
 Symbols (the chapter's): :math:`r_w` wheel radius, :math:`d` half the axle (the lab's
 :math:`d_{mid}`, so the track is :math:`W = 2d`), :math:`R` the radius of a quarter circle
@@ -37,14 +36,15 @@ lab's :math:`\\omega = 7.5` rad/s), :math:`v` forward speed, :math:`\\omega` yaw
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from wheelkin import _validate as v
-from wheelkin.diffdrive import _wheel_speeds_unchecked, wheel_speeds
+from wheelkin.diffdrive import wheel_speeds
 from wheelkin.frames import wrap_angle
-from wheelkin.odometry import _pose_update_unchecked
 
 __all__ = [
     "LAB_ARC_RADIUS",
@@ -54,9 +54,6 @@ __all__ = [
     "LAB_WAYPOINTS",
     "LAB_WHEEL_RADIUS",
     "LAB_WHEEL_RATE",
-    "FollowerController",
-    "PathFollower",
-    "ScheduleController",
     "Segment",
     "WheelCommand",
     "average_encoder_odometry",
@@ -68,6 +65,8 @@ __all__ = [
     "sample_path",
     "schedule",
     "schedule_times",
+    "validate_commands",
+    "validate_segments",
     "waypoint_errors",
 ]
 
@@ -119,7 +118,6 @@ LAB_HALF_AXLE = 0.06
 LAB_HALF_WHEELBASE = 0.05
 
 _TOL = 1e-6  # m: two waypoints closer than this are "the same"; offsets within it "match"
-_TWO_PI = 2.0 * math.pi
 _KINDS = ("straight", "arc", "turn")
 
 
@@ -158,8 +156,40 @@ class Segment:
     centre: tuple[float, float] | None = None
     target: int | None = None
 
-    def _point(self, fraction: float) -> tuple[float, float]:
-        """(x, y) at one ``fraction`` in [0, 1], unchecked (the follower's inner loop)."""
+    def __post_init__(self) -> None:
+        v.choice("kind", self.kind, _KINDS)
+        for name in ("start", "end"):
+            p = v.shaped(name, getattr(self, name), (3,))
+            if p.ndim != 1:
+                raise ValueError(f"{name} must be a pose (x, y, theta), got shape {p.shape}")
+            object.__setattr__(self, name, tuple(p.tolist()))
+        object.__setattr__(self, "length", v.nonnegative("length", self.length))
+        object.__setattr__(self, "heading_change",
+                           v.finite("heading_change", self.heading_change))
+        r = v.finite_array("radius", self.radius, allow_inf=True)
+        if r.ndim != 0:
+            raise ValueError(f"radius must be one number (inf for a straight), got {r!r}")
+        object.__setattr__(self, "radius", float(r))
+        if self.centre is not None:
+            c = v.shaped("centre", self.centre, (2,))
+            if c.ndim != 1:
+                raise ValueError(f"centre must be a point (x, y) or None, got {self.centre!r}")
+            object.__setattr__(self, "centre", tuple(c.tolist()))
+        if self.kind == "arc" and self.centre is None:
+            raise ValueError("centre must be given for an arc")
+        if self.target is not None and (isinstance(self.target, bool)
+                                        or not isinstance(self.target, int | np.integer)
+                                        or self.target < 0):
+            raise ValueError(f"target must be a waypoint index >= 0 or None, "
+                             f"got {self.target!r}")
+
+    def point_at(self, fraction: float) -> tuple[float, float]:
+        """The point (x, y) (m) at one ``fraction`` in [0, 1] of the segment, as floats.
+
+        >>> plan_segments([[0, 0], [2, 0]])[0].point_at(0.25)
+        (0.5, 0.0)
+        """
+        fraction = v.in_range("fraction", fraction, 0.0, 1.0)
         x0, y0, t0 = self.start
         if self.kind == "straight":
             d = fraction * self.length
@@ -194,17 +224,6 @@ class Segment:
             x = np.full_like(f, x0)
             y = np.full_like(f, y0)
         return np.stack(np.broadcast_arrays(x, y, theta), axis=-1)
-
-
-def _wrap_unchecked(angle: float) -> float:
-    """:func:`wheelkin.frames.wrap_angle` of one finite Python float, unvalidated (the
-    follower's inner loop): the same operations, so the same result to the last bit."""
-    if -math.pi < angle <= math.pi:
-        return angle
-    r = float(np.remainder(angle + math.pi, _TWO_PI)) - math.pi
-    if r <= -math.pi:
-        r += _TWO_PI
-    return min(r, math.pi)
 
 
 def _snap(value: float) -> float:
@@ -317,7 +336,9 @@ def plan_segments(waypoints, arc_radius: float | None = LAB_ARC_RADIUS,
     return segments
 
 
-def _check_segments(segments) -> list[Segment]:
+def validate_segments(segments: Segment | Iterable[Segment]) -> list[Segment]:
+    """``segments`` as a list of :class:`Segment`; ``ValueError`` unless it is a non-empty
+    sequence of them (one Segment alone is a list of one)."""
     if isinstance(segments, Segment):
         segments = [segments]
     try:
@@ -340,7 +361,7 @@ def sample_path(segments, spacing: float = 0.01, turn_step: float = 0.05) -> np.
     >>> bool(np.allclose(p[-1], [0.5, -1.5, 2 * np.pi]))
     True
     """
-    segs = _check_segments(segments)
+    segs = validate_segments(segments)
     spacing = v.positive("spacing", spacing)
     turn_step = v.positive("turn_step", turn_step)
     parts = []
@@ -378,6 +399,13 @@ class WheelCommand:
     duration: float
     speed: float
     yaw_rate: float
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.segment, Segment):
+            raise TypeError(f"segment must be a Segment, got {type(self.segment).__name__}")
+        for name in ("left_rate", "right_rate", "speed", "yaw_rate"):
+            object.__setattr__(self, name, v.finite(name, getattr(self, name)))
+        object.__setattr__(self, "duration", v.nonnegative("duration", self.duration))
 
 
 def schedule(segments, wheel_radius: float, half_axle: float,
@@ -424,7 +452,7 @@ def schedule(segments, wheel_radius: float, half_axle: float,
     >>> round(c.left_rate, 4), round(c.right_rate, 4), round(c.duration, 4)
     (5.8929, 7.5, 2.9322)
     """
-    segs = _check_segments(segments)
+    segs = validate_segments(segments)
     r = v.positive("wheel_radius", wheel_radius)
     d = v.positive("half_axle", half_axle)
     rate = v.positive("wheel_rate", wheel_rate)
@@ -454,7 +482,7 @@ def schedule_times(commands) -> np.ndarray:
     >>> schedule_times(cmds).round(3).tolist()
     [0.0, 1.0, 1.314, 2.314]
     """
-    cmds = _check_commands(commands)
+    cmds = validate_commands(commands)
     return np.concatenate([[0.0], np.cumsum([c.duration for c in cmds])])
 
 
@@ -467,7 +495,7 @@ def planned_pose(commands, t) -> np.ndarray:
     >>> planned_pose(cmds, [0.0, 8.3333333333]).round(4).tolist()
     [[1.5, -1.5, 1.5708], [1.5, 1.0, 1.5708]]
     """
-    cmds = _check_commands(commands)
+    cmds = validate_commands(commands)
     tt = v.finite_array("t", t)
     times = schedule_times(cmds)
     k = np.clip(np.searchsorted(times, tt, side="right") - 1, 0, len(cmds) - 1)
@@ -488,7 +516,7 @@ def planned_wheel_angles(commands, t) -> np.ndarray:
     >>> planned_wheel_angles(cmds, [0.5, 2.0]).tolist()
     [[3.75, 3.75], [7.5, 7.5]]
     """
-    cmds = _check_commands(commands)
+    cmds = validate_commands(commands)
     tt = v.finite_array("t", t)
     times = schedule_times(cmds)
     left = np.concatenate([[0.0], np.cumsum([c.left_rate * c.duration for c in cmds])])
@@ -496,7 +524,9 @@ def planned_wheel_angles(commands, t) -> np.ndarray:
     return np.stack([np.interp(tt, times, left), np.interp(tt, times, right)], axis=-1)
 
 
-def _check_commands(commands) -> list[WheelCommand]:
+def validate_commands(commands: Iterable[WheelCommand]) -> list[WheelCommand]:
+    """``commands`` as a list of :class:`WheelCommand`; ``ValueError`` unless it is a
+    non-empty sequence of them."""
     try:
         cmds = list(commands)
     except TypeError:
@@ -517,7 +547,7 @@ def quantise(commands, period: float) -> list[WheelCommand]:
     >>> [round(c.duration, 3) for c in quantise(cmds, 0.064)]
     [1.024, 0.32, 1.024]
     """
-    cmds = _check_commands(commands)
+    cmds = validate_commands(commands)
     period = v.positive("period", period)
     out = []
     for c in cmds:
@@ -628,398 +658,14 @@ def waypoint_errors(path, waypoints=LAB_WAYPOINTS) -> np.ndarray:
     return np.min(np.linalg.norm(p[None, :, :2] - w[:, None, :], axis=-1), axis=1)
 
 
-class PathFollower:
-    """A feedback follower for a plan: pure pursuit on straights and arcs, turns on heading.
-
-    Given a pose estimate, :meth:`command` returns the body twist (v, omega) to drive the
-    current segment, and moves on when the segment is done:
-
-    - straight or arc: the progress s along the segment is the projection of the position on
-      it; the goal point ("carrot") lies ``lookahead`` ahead of it on the segment (beyond the
-      end, on the end tangent). In the robot's frame the carrot is at (c_x, c_y), and pure
-      pursuit drives the circle through it, :math:`\\kappa = 2 c_y / (c_x^2 + c_y^2)`,
-      :math:`\\omega = v\\kappa` :cite:p:`corke2017`. If the carrot is behind the robot, it
-      first turns in place toward it. Before a turn in place and at the goal, the speed falls
-      as ``approach_gain`` times the distance left (never below ``min_speed``), so the robot
-      stops on the waypoint. The segment is done when s reaches its length.
-    - turn in place: :math:`\\omega = \\mathrm{clip}(k_\\theta e, \\pm\\omega_{max})` on the
-      heading error e (wrapped), at least ``min_turn_rate`` in size; done when
-      :math:`|e|` < ``heading_tolerance``.
-
-    Parameters
-    ----------
-    segments : list of Segment
-        From :func:`plan_segments`.
-    speed : float
-        Cruising speed v (m/s), > 0.
-    lookahead : float
-        Distance of the carrot ahead of the projection (m), > 0.
-    heading_gain : float
-        :math:`k_\\theta` (1/s), > 0, for turns in place.
-    max_turn_rate : float
-        :math:`\\omega_{max}` (rad/s), > 0.
-    min_turn_rate : float
-        Smallest commanded turn rate in a turn in place (rad/s), >= 0.
-    heading_tolerance : float
-        (rad), > 0.
-    approach_gain : float
-        (1/s), > 0.
-    min_speed : float
-        (m/s), > 0, at most ``speed``.
-
-    Examples
-    --------
-    On the line, facing along it, the follower drives straight at cruising speed:
-
-    >>> f = PathFollower(plan_segments([[0, 0], [1, 0], [1, 1]], arc_radius=None), speed=0.2)
-    >>> f.command((0.0, 0.0, 0.0))
-    (0.2, 0.0)
-    >>> f.command((1.0, 0.0, 0.0))  # at P1: the straight is done, turn left in place
-    (0.0, 2.0)
-    >>> f.index, f.done
-    (1, False)
-    """
-
-    def __init__(self, segments, *, speed: float = 0.3, lookahead: float = 0.15,
-                 heading_gain: float = 4.0, max_turn_rate: float = 2.0,
-                 min_turn_rate: float = 0.2, heading_tolerance: float = 0.01,
-                 approach_gain: float = 2.0, min_speed: float = 0.02) -> None:
-        self.segments = _check_segments(segments)
-        self.speed = v.positive("speed", speed)
-        self.lookahead = v.positive("lookahead", lookahead)
-        self.heading_gain = v.positive("heading_gain", heading_gain)
-        self.max_turn_rate = v.positive("max_turn_rate", max_turn_rate)
-        self.min_turn_rate = v.in_range("min_turn_rate", min_turn_rate, 0.0, self.max_turn_rate)
-        self.heading_tolerance = v.positive("heading_tolerance", heading_tolerance)
-        self.approach_gain = v.positive("approach_gain", approach_gain)
-        self.min_speed = v.in_range("min_speed", min_speed, 0.0, self.speed)
-        if self.min_speed <= 0:
-            raise ValueError(f"min_speed must be in (0, {self.speed:g}], got {min_speed!r}")
-        self.index = 0
-
-    def reset(self) -> None:
-        """Start again at the first segment."""
-        self.index = 0
-
-    @property
-    def done(self) -> bool:
-        """True once the last segment is done."""
-        return self.index >= len(self.segments)
-
-    def progress(self, pose) -> float:
-        """Arc length (m) along the current straight or arc of the projection of ``pose``."""
-        seg = self.segments[self.index]
-        x, y = pose[0], pose[1]
-        x0, y0, t0 = seg.start
-        if seg.kind == "straight":
-            return (x - x0) * math.cos(t0) + (y - y0) * math.sin(t0)
-        if seg.kind == "arc":
-            cx, cy = seg.centre
-            swept = math.remainder(math.atan2(y - cy, x - cx) - math.atan2(y0 - cy, x0 - cx),
-                                   2 * math.pi)  # in [-pi, pi]
-            return swept * math.copysign(1.0, seg.heading_change) * abs(seg.radius)
-        return 0.0
-
-    def _turn(self, error: float) -> float:
-        rate = min(self.max_turn_rate, max(self.min_turn_rate, self.heading_gain * abs(error)))
-        return math.copysign(rate, error)
-
-    def _carrot(self, seg: Segment, s: float) -> tuple[float, float]:
-        sc = max(s, 0.0) + self.lookahead
-        if sc <= seg.length:
-            return seg._point(sc / seg.length)
-        xe, ye, te = seg.end
-        extra = sc - seg.length
-        return xe + extra * math.cos(te), ye + extra * math.sin(te)
-
-    def command(self, pose) -> tuple[float, float]:
-        """Body twist (v in m/s, omega in rad/s) for the pose estimate (x, y, theta)."""
-        p = v.shaped("pose", pose, (3,))
-        if p.ndim != 1:
-            raise ValueError(f"pose must have shape (3,), got shape {p.shape}")
-        x, y, theta = (float(a) for a in p)
-        return self._command_unchecked(x, y, theta)
-
-    def _command_unchecked(self, x: float, y: float, theta: float) -> tuple[float, float]:
-        """:meth:`command` for a pose of finite Python floats, unvalidated (inner loops)."""
-        while not self.done:
-            seg = self.segments[self.index]
-            if seg.kind == "turn":
-                error = _wrap_unchecked(seg.end[2] - theta)
-                if abs(error) < self.heading_tolerance:
-                    self.index += 1
-                    continue
-                return 0.0, self._turn(error)
-            s = self.progress((x, y, theta))
-            if s >= seg.length:
-                self.index += 1
-                continue
-            cx, cy = self._carrot(seg, s)
-            c, sn = math.cos(theta), math.sin(theta)
-            ahead = c * (cx - x) + sn * (cy - y)
-            left = -sn * (cx - x) + c * (cy - y)
-            if ahead <= 0:
-                return 0.0, self._turn(math.atan2(left, ahead))
-            last = self.index + 1 >= len(self.segments)
-            speed = self.speed
-            if last or self.segments[self.index + 1].kind == "turn":
-                speed = min(speed, max(self.min_speed, self.approach_gain * (seg.length - s)))
-            curvature = 2.0 * left / (ahead * ahead + left * left)
-            return float(speed), float(speed * curvature)
-        return 0.0, 0.0
+#: Names that moved to :mod:`wheelkin.follower`, importable from here as before.
+_MOVED_TO_FOLLOWER = ("FollowerController", "PathFollower", "ScheduleController")
 
 
-# --------------------------------------------------------------------------- sandbox controllers
-class _Sides:
-    """Which of a sandbox robot's driven wheels are on the left (y > 0) and on the right."""
+def __getattr__(name: str) -> Any:
+    # imported on first use: wheelkin.follower imports this module
+    if name in _MOVED_TO_FOLLOWER:
+        from wheelkin import follower
 
-    def __init__(self, robot) -> None:
-        if not all(hasattr(robot, name) for name in ("set_side_rates", "encoder_angles",
-                                                     "spec")):
-            raise ValueError("robot must be a sandbox robot (wheelkin.sandbox.World.add) with "
-                             "set_side_rates and encoder_angles")
-        ys = [w.position[1] for w in robot.spec.driven_wheels]
-        self.left = [i for i, y in enumerate(ys) if y > 0]
-        self.right = [i for i, y in enumerate(ys) if y < 0]
-        if not self.left or not self.right:
-            raise ValueError("robot must have driven wheels on both sides (y > 0 and y < 0)")
-
-    def means(self, angles) -> tuple[float, float]:
-        """Mean angle (rad) of the left wheels and of the right wheels."""
-        a = np.asarray(angles, dtype=float)
-        return float(np.mean(a[self.left])), float(np.mean(a[self.right]))
-
-
-class ScheduleController:
-    """Play an open-loop schedule on a sandbox skid steer, as the lab does.
-
-    A controller for :meth:`wheelkin.sandbox.World.run`: called before each step with the time
-    ``t``, it sets the left (FL, RL) and right (FR, RR) wheel rates of the current command.
-
-    Parameters
-    ----------
-    robot : wheelkin.sandbox.Robot
-        A robot with driven wheels on both sides (the lab's: FL, FR, RL, RR; the left ones are
-        those at y > 0).
-    commands : list of WheelCommand
-        From :func:`schedule` (or :func:`quantise`).
-    switch : {"time", "encoders"}
-        ``"time"``: each command is held for its duration (quantise the schedule first to
-        mimic a controller's time step). Called with the world (as ``World.run`` does), a
-        simulation step in which the command changes gets the mean rates of that step, so
-        that the wheels turn exactly as scheduled whatever the step. ``"encoders"``: each
-        command is held until the encoders say its wheels have turned as planned (the mean
-        of the outer side's wheels, or of all wheels on a straight leg, has turned
-        :math:`|\\dot\\varphi_{outer}|\\,t`), checked every ``period`` seconds.
-    period : float
-        Control period (s), > 0; used by ``switch="encoders"``.
-
-    Attributes
-    ----------
-    switch_times : list of float
-        When each command started (s); one more entry when the schedule ended.
-    """
-
-    def __init__(self, robot, commands, *, switch: str = "time", period: float = 0.064) -> None:
-        self._sides = _Sides(robot)
-        self.robot = robot
-        self.commands = _check_commands(commands)
-        self.switch = v.choice("switch", switch, ("time", "encoders"))
-        self.period = v.positive("period", period)
-        self._times = schedule_times(self.commands)
-        self.index = 0
-        self.switch_times: list[float] = []
-        self._next_tick = 0.0
-        self._start_angles = None
-
-    @property
-    def done(self) -> bool:
-        """True once every command has been played."""
-        return self.index >= len(self.commands)
-
-    def _target_reached(self) -> bool:
-        c = self.commands[self.index]
-        turned = np.abs(self.robot.encoder_angles - self._start_angles)
-        left, right = abs(c.left_rate), abs(c.right_rate)
-        if math.isclose(left, right, rel_tol=1e-9):
-            measured = float(np.mean(turned))  # all wheels: the lab's average
-        else:
-            side = self._sides.right if right > left else self._sides.left
-            measured = float(np.mean(turned[side]))
-        return measured >= max(left, right) * c.duration
-
-    def __call__(self, t: float, world=None) -> None:
-        if self.done:
-            self.robot.set_side_rates(0.0, 0.0)
-            return
-        if self.switch == "time":
-            if not self.switch_times:
-                self.switch_times.append(0.0)
-            while not self.done and t >= self._times[self.index + 1]:
-                self.index += 1
-                self.switch_times.append(float(self._times[self.index]))
-            dt = getattr(world, "dt", None)
-            if dt is not None and (self.done or t + dt / 2 > self._times[self.index + 1]
-                                   or t - dt / 2 < self._times[self.index]):
-                # a switch inside the step [t - dt/2, t + dt/2]: its mean rates keep the
-                # wheel angles exact at every step boundary
-                angles = planned_wheel_angles(self.commands, [t - dt / 2, t + dt / 2])
-                left, right = (angles[1] - angles[0]) / dt
-                self.robot.set_side_rates(float(left), float(right))
-                return
-        else:
-            if not self.switch_times:
-                self.switch_times.append(t)
-                self._start_angles = self.robot.encoder_angles
-            if t >= self._next_tick - 1e-12:
-                self._next_tick += self.period
-                if self._target_reached():
-                    self.index += 1
-                    self.switch_times.append(t)
-                    self._start_angles = self.robot.encoder_angles
-        if self.done:
-            self.robot.set_side_rates(0.0, 0.0)
-        else:
-            c = self.commands[self.index]
-            self.robot.set_side_rates(c.left_rate, c.right_rate)
-
-
-class FollowerController:
-    """Close the loop in the sandbox: dead reckoning from the encoders feeding a
-    :class:`PathFollower`.
-
-    Every ``period`` seconds it reads the encoders, updates the pose estimate with the
-    exact arc (:func:`wheelkin.odometry.pose_update`) from the side means
-    :math:`\\Delta s_{L,R} = r_w\\,\\Delta\\bar\\varphi_{L,R}`, with
-    :math:`\\Delta s = (\\Delta s_L + \\Delta s_R)/2` and
-    :math:`\\Delta\\theta = (\\Delta s_R - \\Delta s_L)/W_{odo}`, asks the follower for a body
-    twist, turns it into side wheel rates with the differential drive's inverse kinematics
-    (:func:`wheelkin.diffdrive.wheel_speeds`, track ``track_width``), scales both down if one
-    would exceed ``max_wheel_rate`` (keeping the curvature), and holds them until the next tick.
-
-    Parameters
-    ----------
-    robot : wheelkin.sandbox.Robot
-        A robot with driven wheels on both sides (the lab's: FL, FR, RL, RR), placed at the
-        plan's start pose.
-    follower : PathFollower
-    wheel_radius : float
-        :math:`r_w` (m), > 0.
-    track_width : float
-        :math:`W` (m), > 0, used to command the wheels; for a skid steer, its effective track.
-    odometry_track_width : float, optional
-        :math:`W_{odo}` (m), > 0, used to dead-reckon the heading; default ``track_width``.
-    period : float
-        Control period (s), > 0.
-    max_wheel_rate : float, optional
-        (rad/s), > 0.
-    pose : (x, y, theta), optional
-        The initial estimate; default the follower's first segment's start.
-
-    Attributes
-    ----------
-    log_t : list of float
-        Times of the control ticks (s).
-    log_estimate : list of tuple
-        The pose estimate at each tick (m, m, rad).
-    finish_time : float or None
-        When the follower reported the last segment done (s).
-    """
-
-    def __init__(self, robot, follower: PathFollower, *, wheel_radius: float,
-                 track_width: float, odometry_track_width: float | None = None,
-                 period: float = 0.064, max_wheel_rate: float | None = None,
-                 pose=None) -> None:
-        from wheelkin.odometry import pose_update
-
-        self._pose_update = pose_update
-        self._sides = _Sides(robot)
-        self.robot = robot
-        if not isinstance(follower, PathFollower):
-            raise ValueError(f"follower must be a PathFollower, got {type(follower).__name__}")
-        self.follower = follower
-        self.wheel_radius = v.positive("wheel_radius", wheel_radius)
-        self.track_width = v.positive("track_width", track_width)
-        self.odometry_track_width = (self.track_width if odometry_track_width is None else
-                                     v.positive("odometry_track_width", odometry_track_width))
-        self.period = v.positive("period", period)
-        self.max_wheel_rate = (None if max_wheel_rate is None else
-                               v.positive("max_wheel_rate", max_wheel_rate))
-        start = follower.segments[0].start if pose is None else pose
-        p = v.shaped("pose", start, (3,))
-        if p.ndim != 1:
-            raise ValueError(f"pose must have shape (3,), got shape {p.shape}")
-        self.estimate = np.array(p, dtype=float)
-        self._last = None
-        self._next_tick = 0.0
-        self.log_t: list[float] = []
-        self.log_estimate: list[tuple[float, float, float]] = []
-        self.finish_time: float | None = None
-
-    def _cap(self, left: float, right: float) -> tuple[float, float]:
-        """Wheel surface speeds (m/s) to rates (rad/s), both scaled down together (the
-        curvature kept) so that neither exceeds ``max_wheel_rate``."""
-        left, right = left / self.wheel_radius, right / self.wheel_radius
-        if self.max_wheel_rate is not None:
-            biggest = max(abs(left), abs(right))
-            if biggest > self.max_wheel_rate:
-                left, right = (left * self.max_wheel_rate / biggest,
-                               right * self.max_wheel_rate / biggest)
-        return left, right
-
-    def rates(self, speed: float, yaw_rate: float) -> tuple[float, float]:
-        """Left and right wheel rates (rad/s) for a body twist, within ``max_wheel_rate``."""
-        left, right = wheel_speeds(speed, yaw_rate, self.track_width)
-        return self._cap(left, right)
-
-    def __call__(self, t: float, world=None) -> None:
-        if t < self._next_tick - 1e-12:
-            return
-        self._next_tick += self.period
-        now = self._sides.means(self.robot.encoder_angles)
-        if self._last is not None:
-            ds_left = self.wheel_radius * (now[0] - self._last[0])
-            ds_right = self.wheel_radius * (now[1] - self._last[1])
-            distance = 0.5 * (ds_left + ds_right)
-            dtheta = (ds_right - ds_left) / self.odometry_track_width
-            self.estimate = np.asarray(self._pose_update(self.estimate, distance, dtheta,
-                                                         "exact"), dtype=float)
-        self._last = now
-        self.log_t.append(float(t))
-        self.log_estimate.append(tuple(float(a) for a in self.estimate))
-        speed, yaw_rate = self.follower.command(self.estimate)
-        if self.follower.done and self.finish_time is None:
-            self.finish_time = float(t)
-        self.robot.set_side_rates(*self.rates(speed, yaw_rate))
-
-    def _tick_unchecked(self, t: float, left_angle: float,
-                        right_angle: float) -> tuple[float, float] | None:
-        """What :meth:`__call__` does at time ``t``, unvalidated, for a fast simulation loop.
-
-        The caller passes the mean encoder angles (rad) of the left and right wheels (as Python
-        floats) instead of a robot to read, and gets back the (left, right) wheel rates to hold
-        from now on, or None between ticks (keep the previous rates). The estimate, the logs
-        and ``finish_time`` are kept as by :meth:`__call__`, to the last bit (the tests compare
-        whole laps); nothing is checked, so a NaN reading gives NaNs instead of a
-        ``ValueError``. The robot passed to the constructor is not used.
-        """
-        if t < self._next_tick - 1e-12:
-            return None
-        self._next_tick += self.period
-        x, y, theta = (float(a) for a in self.estimate)
-        if self._last is not None:
-            r = self.wheel_radius
-            ds_left = r * (left_angle - self._last[0])
-            ds_right = r * (right_angle - self._last[1])
-            distance = 0.5 * (ds_left + ds_right)
-            dtheta = (ds_right - ds_left) / self.odometry_track_width
-            x, y, theta = _pose_update_unchecked(x, y, theta, distance, dtheta)
-            self.estimate = np.array((x, y, theta))
-        self._last = (left_angle, right_angle)
-        self.log_t.append(float(t))
-        self.log_estimate.append((x, y, theta))
-        speed, yaw_rate = self.follower._command_unchecked(x, y, theta)
-        if self.follower.done and self.finish_time is None:
-            self.finish_time = float(t)
-        left, right = _wheel_speeds_unchecked(speed, yaw_rate, self.track_width)
-        return self._cap(left, right)
+        return getattr(follower, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

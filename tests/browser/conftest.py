@@ -40,6 +40,14 @@ class PageReport:
     links: list[str] = field(default_factory=list)
     animations: list[dict] = field(default_factory=list)
     screenshot: Path | None = None
+    #: bytes of every response of the first (empty-cache) visit, by URL
+    first_visit: dict[str, int] = field(default_factory=dict)
+    #: the page's height in CSS px at a 1280x900 window
+    height: int = 0
+    #: figure and animation images: src, natural (PNG) width and shown width, in CSS px
+    images: list[dict] = field(default_factory=list)
+    #: visible code lines wider than their code box at a 1366x768 window
+    overflowing_code: list[str] = field(default_factory=list)
 
 
 class _QuietHandler(http.server.SimpleHTTPRequestHandler):
@@ -144,6 +152,40 @@ _IMAGES_WITHOUT_ALT = r"""
 """
 
 
+# Figure images of the page (cell outputs, animation players), at their shown size.
+_IMAGES = r"""
+() => [...document.querySelectorAll(".cell_output img, div.animation img")]
+  .filter(img => img.getClientRects().length > 0)
+  .map(img => ({src: img.currentSrc || img.src, natural: img.naturalWidth,
+                shown: img.getBoundingClientRect().width,
+                animation: !!img.closest("div.animation"),
+                id: img.id || (img.getAttribute("alt") || "").slice(0, 60)}))
+"""
+
+# Visible code lines (inputs not folded) wider than their box: measured with the box's font.
+_OVERFLOWING_CODE = r"""
+() => {
+  const canvas = document.createElement("canvas").getContext("2d");
+  const found = [];
+  for (const pre of document.querySelectorAll(".cell_input pre, div.highlight pre")) {
+    if (pre.getClientRects().length === 0) continue;  // folded away
+    if (pre.closest(".cell_output")) continue;  // an output, not code
+    const style = getComputedStyle(pre);
+    canvas.font = `${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
+    const inner = pre.clientWidth - parseFloat(style.paddingLeft) -
+                  parseFloat(style.paddingRight);
+    for (const line of pre.textContent.replace(/\n$/, "").split("\n")) {
+      const width = canvas.measureText(line.replace(/\t/g, "        ")).width;
+      if (width > inner + 0.5) {
+        found.push(`${Math.round(width)} px > ${Math.round(inner)} px: ${line.slice(0, 90)}`);
+      }
+    }
+  }
+  return found;
+}
+"""
+
+
 def _play_animations(page) -> list[dict]:
     """Press Play on every to_jshtml player; report whether its frame changed."""
     results = []
@@ -208,11 +250,22 @@ def visit(browser, site_url, screenshots_dir):
             if urlsplit(request.url).netloc == origin:
                 report.failed_requests.append(f"{request.failure} {request.url}")
 
+        def on_finished(request):
+            if urlsplit(request.url).scheme in ("data", "blob", "about"):
+                return
+            try:
+                response = request.response()
+                size = len(response.body()) if response is not None else 0
+            except Exception:  # a body the browser no longer holds (redirects)
+                size = 0
+            report.first_visit[request.url] = size
+
         page.route("**/*", route)
         page.on("console", on_console)
         page.on("pageerror", lambda exc: report.console_errors.append(f"page error: {exc}"))
         page.on("response", on_response)
         page.on("requestfailed", on_request_failed)
+        page.on("requestfinished", on_finished)
         try:
             page.goto(report.url, wait_until="load", timeout=60_000)
             page.wait_for_load_state("networkidle", timeout=30_000)
@@ -224,10 +277,17 @@ def visit(browser, site_url, screenshots_dir):
             report.images_without_alt = page.evaluate(_IMAGES_WITHOUT_ALT)
             report.links = page.evaluate(
                 "() => [...document.querySelectorAll('a[href]')].map(a => a.href)")
+            report.height = page.evaluate(
+                "() => Math.max(document.documentElement.scrollHeight, "
+                "document.body.scrollHeight)")
+            report.images = page.evaluate(_IMAGES)
             shot = screenshots_dir / (page_name.replace("/", "__") + ".png")
             page.screenshot(path=str(shot), full_page=True)
             report.screenshot = shot
             report.animations = _play_animations(page)
+            page.set_viewport_size({"width": 1366, "height": 768})  # a laptop screen
+            page.wait_for_timeout(200)
+            report.overflowing_code = page.evaluate(_OVERFLOWING_CODE)
         finally:
             context.close()
         cache[page_name] = report

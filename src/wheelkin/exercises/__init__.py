@@ -24,7 +24,6 @@ True
 from __future__ import annotations
 
 import copy
-import importlib
 import inspect
 import itertools
 import math
@@ -32,6 +31,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from wheelkin._registry import load_chapter_modules
 
 __all__ = [
     "UNIT_FACTORS",
@@ -66,7 +67,7 @@ UNIT_FACTORS: tuple[tuple[float, str], ...] = (
 _REGISTRY: dict[str, Exercise] = {}
 #: Modules of this package that hold a chapter's exercises (imported on first lookup).
 CHAPTER_MODULES = ("conventions", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
-                   "unified")
+                   "unified", "carlike")
 
 
 @dataclass(frozen=True)
@@ -300,12 +301,7 @@ def _fmt(value) -> str:
 
 
 def _load_chapters() -> None:
-    for mod in CHAPTER_MODULES:
-        try:
-            importlib.import_module(f"{__name__}.{mod}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{mod}":
-                raise
+    load_chapter_modules(__name__, CHAPTER_MODULES)
 
 
 def get(name: str) -> Exercise:

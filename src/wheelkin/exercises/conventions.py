@@ -1,4 +1,4 @@
-"""Exercises of chapter 1, "Frames, units and conventions" (notebooks/01_conventions).
+"""Exercises of chapter 1, "Frames, units and conventions" (notebooks/01_conventions/).
 
 Each exercise converts one source's numbers into ours (SI, REP-103: x forward, y left,
 heading and yaw rate counter-clockwise, a positive turning radius turns left), or computes a
@@ -20,8 +20,8 @@ import numpy as np
 from wheelkin import frames, units
 from wheelkin.exercises import Case, Exercise
 
-__all__ = ["encoder_steps_to_metres", "firmware_pose", "icr_of", "mecanum_twist",
-           "rover_radius"]
+__all__ = ["encoder_steps_to_metres", "firmware_pose", "heading_error", "icr_of",
+           "mecanum_twist", "rover_radius"]
 
 
 # ------------------------------------------------------------------ 1. rover turning radius
@@ -140,7 +140,7 @@ Exercise(
         (lambda steps: steps / (12.0 * 75.81) * 0.113097 * 1000,
          "that is millimetres: the answer is in metres."),
         (lambda steps: steps / (12.0 * 75.81) * 2 * math.pi * 0.113097,
-         "0.113097 m is already the circumference (2 pi r_w), not the radius."),
+         "0.113097 m is already the circumference (2 pi r), not the radius."),
     ],
 )
 
@@ -174,5 +174,63 @@ Exercise(
          "its inverse matrix against the wheel layout): omega passes through unchanged."),
         (lambda Vx_ftps, Vy_ftps, omega: [Vy_ftps, -Vx_ftps, omega],
          "the speeds are still in feet per second: multiply by 0.3048."),
+    ],
+)
+
+
+# ------------------------------------------------------------------ 6. a heading error (judgement)
+
+def heading_error(theta_odometry, theta_true):
+    """The signed error (rad) of the final heading, keeping whole turns: both series (wrapped
+    to (-pi, pi], sampled so that no step exceeds a quarter turn) are unwrapped, then the
+    last samples subtracted, odometry minus truth.
+
+    >>> t = np.linspace(0.0, 4 * np.pi, 200)   # two left turns
+    >>> o = 1.5 * t                             # odometry says three
+    >>> round(heading_error(frames.wrap_angle(o), frames.wrap_angle(t)) / (2 * np.pi), 6)
+    1.0
+    """
+    o = np.unwrap(np.asarray(theta_odometry, dtype=float))
+    t = np.unwrap(np.asarray(theta_true, dtype=float))
+    return float(o[-1] - t[-1])
+
+
+def _heading_series(turns_true, scale, offset, n=25):
+    """(odometry, truth), both wrapped: the truth turns ``turns_true`` turns at a steady rate
+    with a wiggle; the odometry over-counts by ``scale`` and drifts by ``offset`` rad."""
+    s = np.linspace(0.0, 1.0, n)
+    truth = 2 * np.pi * turns_true * s + 0.3 * np.sin(5 * np.pi * s)
+    odometry = scale * truth + offset * s
+    return (np.round(frames.wrap_angle(odometry), 2), np.round(frames.wrap_angle(truth), 2))
+
+
+def _wrapped_error(theta_odometry, theta_true):
+    return float(frames.wrap_angle(heading_error(theta_odometry, theta_true)))
+
+
+def _last_samples(theta_odometry, theta_true):
+    return float(np.asarray(theta_odometry)[-1] - np.asarray(theta_true)[-1])
+
+
+def _absolute(theta_odometry, theta_true):
+    return abs(heading_error(theta_odometry, theta_true))
+
+
+Exercise(
+    "conventions.heading_error",
+    "The signed error (rad) of the final heading, odometry minus truth, keeping whole turns, "
+    "from two series of headings wrapped to (-pi, pi] and sampled finely.",
+    heading_error,
+    [Case(_heading_series(2.0, 1.5, 0.0)), Case(_heading_series(-1.0, 1.02, 0.4)),
+     Case(_heading_series(3.0, 0.9, -0.2)), Case(_heading_series(0.25, 1.0, 0.05))],
+    mistakes=[
+        (_wrapped_error, "you wrapped the error: a robot that counted a whole turn too many "
+                         "would show an error of 0. Report the difference of the unwrapped "
+                         "headings, not wrapped again."),
+        (_last_samples, "you subtracted the last wrapped samples: whole turns (and the jump "
+                        "at +-pi) are lost. Unwrap each series first (np.unwrap), then "
+                        "subtract."),
+        (_absolute, "the error is signed: odometry ahead of the truth (to the left) is "
+                    "positive, behind is negative."),
     ],
 )

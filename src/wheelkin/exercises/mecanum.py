@@ -19,7 +19,8 @@ import numpy as np
 from wheelkin.exercises import Case, Exercise
 from wheelkin.mecanum import MecanumGeometry, forward_kinematics, inverse_kinematics
 
-__all__ = ["max_spin_rate", "rates_60", "strafe_rates", "twist_from_rates"]
+__all__ = ["choose_roller_angle", "max_spin_rate", "rates_60", "strafe_rates",
+           "twist_from_rates"]
 
 WHEELS = ("FL", "FR", "RL", "RR")
 _ROLLERS = np.array([-1.0, 1.0, 1.0, -1.0])
@@ -170,5 +171,89 @@ Exercise(
          "you divided by the distance from the centre to a wheel, sqrt(a² + b²): right for a "
          "wheel that rolls along the circle, but a mecanum wheel rolls along x and its rollers "
          "take the rest, so the lever arm is k = a + b."),
+    ],
+)
+
+
+# --- 5. a design: which roller angle? ---------------------------------------------------------
+
+ROLLER_CHOICES_DEG = (30.0, 45.0, 60.0)
+
+
+def _uses(angle_deg, strafe_speed, side_accel, max_rim_speed, mu, gravity=9.81):
+    """(share of the rim-speed limit, share of the grip) a pure strafe needs at this angle.
+
+    Checked against the library's fastest rim and grip usage:
+
+    >>> from wheelkin.mecanum import MecanumGeometry, grip_usage, max_rim_speed
+    >>> g = MecanumGeometry(0.05, 0.2, 0.15, roller_angle=math.radians(60))
+    >>> speed, grip = _uses(60.0, 2.0, 1.5, 3.0, 0.8)
+    >>> bool(np.isclose(speed, max_rim_speed(0.0, 2.0, 0.0, g) / 3.0))
+    True
+    >>> bool(np.isclose(grip, grip_usage(0.0, 1.5, 0.8, math.radians(60))))
+    True
+    """
+    gamma = math.radians(angle_deg)
+    speed_use = abs(strafe_speed) / math.tan(gamma) / max_rim_speed  # rim: |vy| cot(gamma)
+    grip_use = abs(side_accel) / (math.cos(gamma) * mu * gravity)  # eq. (mecanum-grip)
+    return speed_use, grip_use
+
+
+def choose_roller_angle(strafe_speed, side_accel, max_rim_speed, mu):
+    """The roller angle (deg) among 30, 45, 60 that strafes at ``strafe_speed`` m/s and
+    accelerates sideways at ``side_accel`` m/s² with the most margin (the smallest of the
+    larger of its two uses); 0 if none can."""
+    best, best_use = 0.0, 1.0
+    for angle in ROLLER_CHOICES_DEG:
+        use = max(_uses(angle, strafe_speed, side_accel, max_rim_speed, mu))
+        if use <= best_use:
+            best, best_use = angle, use
+    return best
+
+
+def _speed_only(strafe_speed, side_accel, max_rim_speed, mu):
+    ok = [a for a in ROLLER_CHOICES_DEG
+          if _uses(a, strafe_speed, side_accel, max_rim_speed, mu)[0] <= 1.0]
+    return max(ok) if ok else 0.0
+
+
+def _grip_only(strafe_speed, side_accel, max_rim_speed, mu):
+    ok = [a for a in ROLLER_CHOICES_DEG
+          if _uses(a, strafe_speed, side_accel, max_rim_speed, mu)[1] <= 1.0]
+    return min(ok) if ok else 0.0
+
+
+def _first_that_works(strafe_speed, side_accel, max_rim_speed, mu):
+    for a in ROLLER_CHOICES_DEG:
+        if max(_uses(a, strafe_speed, side_accel, max_rim_speed, mu)) <= 1.0:
+            return a
+    return 0.0
+
+
+Exercise(
+    "mecanum.choose_roller_angle",
+    "Choose the roller angle (30, 45 or 60 degrees, or 0 if none works) for a vehicle that "
+    "must strafe at `strafe_speed` m/s with rims limited to `max_rim_speed` m/s and "
+    "accelerate sideways at `side_accel` m/s² on a floor of friction `mu`; of the angles "
+    "that work, the one with the most margin.",
+    choose_roller_angle,
+    [
+        Case((3.0, 1.0, 2.0, 0.8)),    # only 60 is fast enough
+        Case((1.0, 4.5, 3.0, 0.8)),    # 60 slides; 30 has the most margin
+        Case((2.0, 3.2, 3.2, 0.8)),    # 45 balances the two
+        Case((2.0, 1.0, 3.0, 0.8)),    # 45 works, 60 has more margin
+        Case((3.0, 5.0, 2.0, 0.8)),    # none: too fast and too hard at once
+    ],
+    mistakes=[
+        (_speed_only,
+         "you chose by wheel speed alone: a steeper roller strafes more cheaply "
+         "(rim speed |vy| cot γ), but pushes sideways with only cos γ of its force. Check "
+         "the grip too: |a_y| / cos γ must stay within μg."),
+        (_grip_only,
+         "you chose by grip alone: a shallow roller pushes sideways well, but its rim must "
+         "turn at |vy| cot γ to strafe. Check that this stays within the rim-speed limit."),
+        (_first_that_works,
+         "that angle works, but another one has more margin: compare, for each angle, the "
+         "larger of its two uses (speed and grip) and take the smallest."),
     ],
 )

@@ -1,6 +1,20 @@
-"""Exercises of the rover chapter (notebooks/03_rover): the Open Source Rover's wheel speeds,
-corner angles and tightest turn, in the document's convention (inches, r > 0 turns right,
-wheels LF, LM, LB, RF, RM, RB; corners LF, RF, LB, RB, angle > 0 = front edge to the right).
+"""Exercises of the rover chapter (notebooks/03_rover/): the Open Source Rover's wheel speeds,
+corner angles, tightest turn and a design question. Lengths in inches; wheels LF, LM, LB, RF,
+RM, RB; corners LF, RF, LB, RB. The speed and tightest-turn exercises take the document's
+radius r_OSR (> 0 turns right); the corner-angle exercise works in the book's convention
+(signed radius R > 0 turns left, steering angle delta > 0 turns the wheel left).
+
+The design answer is checked against the library by a property: at the longest corner offset
+the outer corner and the outer middle wheel are equally far from the turning centre exactly
+at the tightest turn.
+
+>>> from wheelkin.rover import RoverGeometry, min_turning_radius, outer_middle_is_fastest_above
+>>> d = longest_corner_offset(7.254, 10.073, 45.0)
+>>> round(d, 2)
+12.7
+>>> g = RoverGeometry(7.254, d, d, 10.073)
+>>> abs(outer_middle_is_fastest_above(g) - min_turning_radius(g)) < 1e-9
+True
 
 >>> from wheelkin.exercises import check
 >>> result = check("rover.tightest_turn", lambda d1, d2, d3, max_corner_angle_deg: 0.0)
@@ -25,8 +39,8 @@ from wheelkin.rover import (
     wheel_speeds,
 )
 
-__all__ = ["corner_angles_general", "normalised_wheel_speeds", "outer_back_speed",
-           "tightest_turn"]
+__all__ = ["corner_angles_general", "longest_corner_offset", "normalised_wheel_speeds",
+           "outer_back_speed", "tightest_turn"]
 
 _G = OSR_GEOMETRY
 
@@ -79,11 +93,17 @@ Exercise(
 
 # ------------------------------------------------------------------ 2. corner angles, d2 != d3
 
-def corner_angles_general(radius, d1, d2, d3):
-    """The four corner angles (rad), corners LF, RF, LB, RB, positive = front edge turned to
-    the right, for a rover whose back corners are d2 behind and front corners d3 ahead of
-    the middle axle, d1 to each side; ``radius`` in inches, > 0 turns right."""
-    return corner_angles(radius, RoverGeometry(d1, d2, d3, d1), straight_threshold=math.inf)
+def corner_angles_general(R, d1, d2, d3):
+    """The four corner angles delta (rad), corners LF, RF, LB, RB, positive = turned to the
+    LEFT (the book's sign), for a rover whose back corners are d2 behind and front corners d3
+    ahead of the middle axle, d1 to each side; ``R`` the signed turning radius of the body
+    centre in inches, > 0 turns left. The library's corner_angles uses the document's sign
+    (delta_OSR = -delta) and radius (r_OSR = -R)."""
+    return -corner_angles(-R, RoverGeometry(d1, d2, d3, d1), straight_threshold=math.inf)
+
+
+def _document_sign(R, d1, d2, d3):
+    return corner_angles(R, RoverGeometry(d1, d2, d3, d1), straight_threshold=math.inf)
 
 
 def _swapped_d2_d3(radius, d1, d2, d3):
@@ -103,21 +123,24 @@ def _inner_only(radius, d1, d2, d3):
 
 Exercise(
     "rover.corner_angles",
-    "The four corner angles in radians (LF, RF, LB, RB; positive = front edge turned to the "
-    "right) for a rover with back corners d2 behind and front corners d3 ahead of the middle "
-    "axle, d1 to each side; radius in inches, > 0 turns right.",
+    "The four corner angles delta in radians (LF, RF, LB, RB; positive = turned to the left) "
+    "for a rover with back corners d2 behind and front corners d3 ahead of the middle axle, "
+    "d1 to each side; R in inches, > 0 turns left.",
     corner_angles_general,
     [Case((40.0, 6.0, 14.0, 9.0)), Case((-40.0, 6.0, 14.0, 9.0)), Case((25.0, 5.0, 8.0, 12.0)),
      Case((-60.0, 8.0, 12.0, 16.0)), Case((30.0, 7.254, 10.5, 10.5))],
     wheel_names=("LF", "RF", "LB", "RB"),
     mistakes=[
+        (_document_sign, "these are the document's angles for a turn to the other side: with "
+                         "R > 0 the turn is to the LEFT, and delta > 0 turns a wheel left; "
+                         "use delta = atan(x / (R - y)) with y positive to the left."),
         (_swapped_d2_d3, "d2 and d3 are swapped: the front corners are d3 ahead of the middle "
                          "axle, the back corners d2 behind it."),
         (_back_same_sign, "the back corners must turn the other way from the front ones: they "
-                          "are behind the turning centre's line, so their angle is negative "
-                          "in a right turn."),
+                          "are behind the turning centre's line, so their angle has the "
+                          "opposite sign."),
         (_inner_only, "every corner got the inner wheel's angle (equation 16); the outer "
-                      "corners are farther from the turning centre: use r + d1 there."),
+                      "corners are farther from the turning centre: use |R| + d1 there."),
     ],
 )
 
@@ -193,5 +216,59 @@ Exercise(
         (_document_rule, "that is the document's rule (the outer middle wheel gets the "
                          "command); for this long rover a corner wheel is farther from the "
                          "turning centre and would be asked for more than speed."),
+    ],
+)
+
+
+# ------------------------------------------------------------------ 5. design: a longer rover
+
+def longest_corner_offset(d1, d4, max_corner_angle_deg):
+    """The largest corner offset d = d2 = d3 (in) for which the document's rule (the outer
+    middle wheel gets the command) never asks a corner motor for more than the command in any
+    turn the hard stops allow: r*(d) <= r_min(d), with r*(d) = (d^2 + d1^2 - d4^2) /
+    (2 (d4 - d1)) and r_min(d) = d1 + d / tan(stop). Requires d4 > d1."""
+    if not d4 > d1 > 0:
+        raise ValueError(f"need d4 > d1 > 0 (in), got d1={d1!r}, d4={d4!r}")
+    t = math.tan(math.radians(max_corner_angle_deg))
+    k = d4 - d1
+    # d^2 - (2 k / t) d - (2 k d1 + d4^2 - d1^2) = 0: the positive root
+    b = 2 * k / t
+    c = 2 * k * d1 + d4**2 - d1**2
+    return (b + math.sqrt(b * b + 4 * c)) / 2
+
+
+def _tan_of_degrees_design(d1, d4, max_corner_angle_deg):
+    k, t = d4 - d1, math.tan(max_corner_angle_deg)
+    c = 2 * k * d1 + d4**2 - d1**2
+    return (2 * k / t + math.sqrt((2 * k / t) ** 2 + 4 * c)) / 2
+
+
+def _r_min_without_d1(d1, d4, max_corner_angle_deg):
+    k, t = d4 - d1, math.tan(math.radians(max_corner_angle_deg))
+    c = d4**2 - d1**2
+    return (2 * k / t + math.sqrt((2 * k / t) ** 2 + 4 * c)) / 2
+
+
+def _r_min_times_tan(d1, d4, max_corner_angle_deg):
+    k, t = d4 - d1, math.tan(math.radians(max_corner_angle_deg))
+    c = 2 * k * d1 + d4**2 - d1**2
+    return (2 * k * t + math.sqrt((2 * k * t) ** 2 + 4 * c)) / 2
+
+
+Exercise(
+    "rover.longest_corner_offset",
+    "Design: the largest corner offset d = d2 = d3 (in) of a rover with sideways dimensions "
+    "d1 and d4 (in) for which the outer middle wheel is the fastest wheel in every turn that "
+    "corner hard stops at max_corner_angle_deg allow.",
+    longest_corner_offset,
+    [Case((7.254, 10.073, 45.0)), Case((7.254, 10.073, 35.0)), Case((6.0, 12.0, 45.0)),
+     Case((5.0, 9.0, 60.0))],
+    mistakes=[
+        (_tan_of_degrees_design, "math.tan takes radians: convert the hard stop with "
+                                 "math.radians first."),
+        (_r_min_without_d1, "the tightest turn is measured from the body centre: "
+                            "r_min = d1 + d / tan(stop), not d / tan(stop)."),
+        (_r_min_times_tan, "tan(stop) = d / (r_min - d1), so r_min = d1 + d / tan(stop), not "
+                           "d1 + d * tan(stop)."),
     ],
 )

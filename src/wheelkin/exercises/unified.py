@@ -17,17 +17,23 @@ import math
 import numpy as np
 
 from wheelkin.exercises import Case, Exercise
+from wheelkin.mecanum import MecanumGeometry
 from wheelkin.unified import (
     WheelConstraint,
+    diff_drive_wheels,
+    mecanum_wheels,
     mobility,
     rolling_row,
     skid_steer_wheels,
     sliding_row,
+    rover_wheels,
     slip_residual,
+    steer_for_twist,
     wheel_rates,
 )
 
-__all__ = ["omni_rates", "skid_steer_slip", "tricycle_mobility", "wheel_rows"]
+__all__ = ["CANDIDATES", "choose_design", "omni_rates", "skid_steer_slip", "tricycle_mobility",
+           "wheel_rows"]
 
 
 # --- 1. the two rows of one wheel ----------------------------------------------------------------
@@ -236,5 +242,96 @@ Exercise(
         (_skid_with_speed,
          "the forward speed v is along each wheel's rolling direction: it adds nothing to the "
          "sideways slide."),
+    ],
+)
+
+
+# --- 5. a design: which wheel set for a task? ----------------------------------------------------
+
+def _omni_base():
+    return tuple(WheelConstraint(f"O{k}", (0.2 * math.cos(q), 0.2 * math.sin(q)),
+                                 q + math.pi / 2, 0.03, "swedish", roller_angle=math.pi / 2)
+                 for k, q in enumerate(2 * np.pi * np.arange(3) / 3))
+
+
+def _swerve():
+    wheels = tuple(WheelConstraint(f"S{k}", (0.3 * math.cos(q), 0.3 * math.sin(q)),
+                                   kind="steered")
+                   for k, q in enumerate(2 * np.pi * np.arange(3) / 3))
+    return steer_for_twist(wheels, (0.3, 0.2, 0.5))  # coordinated on one turning centre
+
+
+def _rover():
+    return rover_wheels()
+
+
+#: The candidate designs of the exercise: (description, wheels builder, motors).
+CANDIDATES = (
+    ("differential drive: two fixed driven wheels on one axle and a caster",
+     lambda: diff_drive_wheels(0.3, 0.05), 2),
+    ("skid steer: four fixed driven wheels on two axles",
+     lambda: skid_steer_wheels(0.15, 0.2, 0.05), 4),
+    ("mecanum: four 45-degree Swedish wheels", lambda: mecanum_wheels(MecanumGeometry(
+        0.05, 0.2, 0.15)), 4),
+    ("omni base: three 90-degree Swedish wheels at 120 degrees", _omni_base, 3),
+    ("tricycle: a fixed unpowered rear axle and a driven, steered front wheel",
+     lambda: _tricycle("steered"), 2),
+    ("rover: a fixed middle pair and four steered corners, all six driven", _rover, 10),
+    ("swerve: three driven, steered wheels", _swerve, 6),
+)
+
+
+def _degrees(index):
+    m = mobility(CANDIDATES[index][1]())
+    return m.degree_of_mobility, m.degree_of_steerability
+
+
+def choose_design(delta_m, delta_s):
+    """Index into :data:`CANDIDATES` of the design with mobility ``delta_m`` and
+    steerability ``delta_s`` that needs the fewest motors; -1 if none has them.
+
+    The degrees are computed by :func:`wheelkin.unified.mobility` from each design's wheels:
+
+    >>> [_degrees(k) for k in range(len(CANDIDATES))]
+    [(2, 0), (1, 0), (3, 0), (3, 0), (1, 1), (1, 1), (1, 2)]
+    """
+    fits = [k for k in range(len(CANDIDATES)) if _degrees(k) == (delta_m, delta_s)]
+    return min(fits, key=lambda k: CANDIDATES[k][2]) if fits else -1
+
+
+def _first_fit(delta_m, delta_s):
+    fits = [k for k in range(len(CANDIDATES)) if _degrees(k) == (delta_m, delta_s)]
+    return fits[0] if fits else -1
+
+
+def _most_motors(delta_m, delta_s):
+    fits = [k for k in range(len(CANDIDATES)) if _degrees(k) == (delta_m, delta_s)]
+    return max(fits, key=lambda k: CANDIDATES[k][2]) if fits else -1
+
+
+def _same_manoeuvrability(delta_m, delta_s):
+    fits = [k for k in range(len(CANDIDATES)) if sum(_degrees(k)) == delta_m + delta_s]
+    return min(fits, key=lambda k: CANDIDATES[k][2]) if fits else -1
+
+
+Exercise(
+    "unified.choose_design",
+    "Return the index in `CANDIDATES` of the design whose wheels give the degree of mobility "
+    "`delta_m` and the degree of steerability `delta_s` with the fewest motors, or -1 if no "
+    "candidate gives them.",
+    choose_design,
+    [Case((3, 0)), Case((1, 1)), Case((2, 0)), Case((1, 2)), Case((2, 1))],
+    mistakes=[
+        (_first_fit,
+         "that design has the right degrees, but another has them with fewer motors: the "
+         "three-omni base is omnidirectional with 3 motors, the mecanum vehicle needs 4."),
+        (_most_motors,
+         "that design has the right degrees, but it is the most expensive one: compare the "
+         "motor counts and take the fewest (the rover needs ten motors for what a tricycle "
+         "does with two)."),
+        (_same_manoeuvrability,
+         "that design has the right degree of manoeuvrability δM = δm + δs but the wrong "
+         "split: a differential drive (2, 0) turns without steering, a tricycle (1, 1) must "
+         "steer first. Compute δm and δs separately."),
     ],
 )

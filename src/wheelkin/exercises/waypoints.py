@@ -22,7 +22,7 @@ from wheelkin.exercises import Case, Exercise
 from wheelkin.waypoints import plan_segments, schedule
 
 __all__ = ["curve_wheel_rates", "effective_track_width", "heading_after",
-           "quarter_circle_duration"]
+           "quarter_circle_duration", "skid_curve_rates"]
 
 
 def _arc_command(radius, half_axle, wheel_radius, wheel_rate):
@@ -174,5 +174,41 @@ Exercise(
         (lambda left, right, rot, r: (right - left) / rot,
          "the wheel angles are in radians: multiply by the wheel radius for the distance "
          "the rims rolled."),
+    ],
+)
+
+
+# ------------------------------------------------------------------ 5. a design: skid-steer curve
+
+def skid_curve_rates(radius, half_axle, half_wheelbase, wheel_radius, wheel_rate):
+    """(left, right) wheel rates (rad/s) that make a four-wheeled skid steer (wheels at
+    x = ±``half_wheelbase``, y = ±``half_axle``, m) follow a curve of signed ``radius`` (m, > 0
+    turns left) with the outer wheels at ``wheel_rate``: the two-wheel rates computed with the
+    effective half track χ d, χ = 1 + (a/d)² (the Coulomb spin derivation of the lab chapter)."""
+    chi = 1.0 + (half_wheelbase / half_axle) ** 2
+    return curve_wheel_rates(radius, chi * half_axle, wheel_radius, wheel_rate)
+
+
+Exercise(
+    "waypoints.skid_curve_rates",
+    "Design the (left, right) wheel rates (rad/s) that make a four-wheeled skid steer with "
+    "half track half_axle and half wheelbase half_wheelbase (m) follow a curve of signed radius "
+    "R (m, > 0 turns left), the outer wheels at wheel_rate; wheel_radius in m.",
+    skid_curve_rates,
+    [Case((0.5, 0.06, 0.05, 0.04, 7.5)), Case((-0.5, 0.06, 0.05, 0.04, 7.5)),
+     Case((1.0, 0.1, 0.04, 0.05, 6.0)), Case((-0.8, 0.08, 0.08, 0.04, 5.0))],
+    wheel_names=("left", "right"),
+    mistakes=[
+        (lambda R, d, a, r, w: curve_wheel_rates(R, d, r, w),
+         "those are the rates of a two-wheeled robot: a skid steer turns only 1/χ as fast, "
+         "so compute them with the effective half track χ d, χ = 1 + (a/d)²."),
+        (lambda R, d, a, r, w: curve_wheel_rates(R, d / (1 + (a / d) ** 2), r, w),
+         "χ goes the other way: the skid steer turns less than it is told, so it needs a "
+         "wider effective track, χ d, not d/χ."),
+        (lambda R, d, a, r, w: curve_wheel_rates(R, (1 + a / d) * d, r, w),
+         "χ = 1 + (a/d)², with the ratio squared."),
+        (lambda R, d, a, r, w: skid_curve_rates(R, d, a, r, w)[::-1],
+         "the wheels are swapped: on a left turn (R > 0) the left wheels are the inner, "
+         "slower ones."),
     ],
 )

@@ -16,6 +16,7 @@ exact SE(2) stepping, walls), :mod:`.sensors` (encoders), :mod:`.render` (drawin
 animations). Everything is SI and REP-103 (x forward, y left, heading counter-clockwise).
 """
 
+from .car import RC_CAR, PurePursuitDriver, Steering, car, car_odometry, drive, front_angles
 from .vehicles import (
     LAB_ROBOT,
     MECANUM_ROBOT,
@@ -36,12 +37,19 @@ __all__ = [
     "MECANUM_ROBOT",
     "OPEN_SOURCE_ROVER",
     "RADON_ULZER",
+    "RC_CAR",
+    "PurePursuitDriver",
     "Robot",
+    "Steering",
     "Trajectory",
     "VehicleSpec",
     "Wheel",
     "World",
+    "car",
+    "car_odometry",
     "diff_drive",
+    "drive",
+    "front_angles",
     "ideal_commands",
     "mecanum",
     "rover",

@@ -117,6 +117,8 @@ def constraint_rows(spec: VehicleSpec, steering=()) -> tuple[np.ndarray, np.ndar
             a = h + math.pi / 2 + wheel.roller_angle
             u = (math.cos(a), math.sin(a))
             rows = [(u, wheel.radius * (u[0] * e[0] + u[1] * e[1]))]
+        elif wheel.kind == "free":  # rolls freely: an empty rolling row, the lateral row
+            rows = [((0.0, 0.0), 0.0), (n, 0.0)]
         else:
             rows = [(e, wheel.radius), (n, 0.0)]
         for d, coeff in rows:
@@ -341,20 +343,55 @@ class _Base:
         self.table = tuple(
             (w.position[0], w.position[1], w.heading, w.radius, w.kind == "mecanum",
              w.roller_angle, where.get(w.name, -1),
-             (float(cap) * (1.0 + CAP_TOLERANCE)) ** 2)
+             (float(cap) * (1.0 + CAP_TOLERANCE)) ** 2, w.kind == "free")
             for w, cap in zip(spec.driven_wheels, self.caps, strict=True))
         self.C_flat = tuple(v for row in self.C_list for v in row)
+        # Free-rolling wheels have one row each (lateral), so J^T J depends on their steering:
+        # keep the part of the other wheels, and add theirs per steering (_free_gram_inverse).
+        self.has_free = any(entry[8] for entry in self.table)
+        if self.has_free:
+            rest = np.zeros((3, 3))
+            for j, entry in enumerate(self.table):
+                if not entry[8]:
+                    rows = J[j * self.k:(j + 1) * self.k]
+                    rest += rows.T @ rows
+            self.gram_rest = tuple(rest.reshape(-1).tolist())
+            self.free = tuple(entry for entry in self.table if entry[8])
         # An unsteered wheel's stick data does not change: computed once here.
         self.fixed = tuple(None if entry[6] >= 0 else _wheel_data(entry, 0.0, self.C_flat)
                            for entry in self.table)
 
 
+def _free_gram_inverse(base: _Base, steering: tuple) -> tuple:
+    """C = (J^T J)^-1 (flat, 9 floats) of a vehicle with free-rolling wheels at a steering."""
+    a, b, c, d, e, f, gg, h, k = base.gram_rest
+    for entry in base.free:
+        px, py, heading, slot = entry[0], entry[1], entry[2], entry[6]
+        ang = heading + (steering[slot] if slot >= 0 else 0.0)
+        ch, sh = math.cos(ang), math.sin(ang)
+        r0, r1, r2 = -sh, ch, px * ch + py * sh
+        a += r0 * r0
+        b += r0 * r1
+        c += r0 * r2
+        e += r1 * r1
+        f += r1 * r2
+        k += r2 * r2
+    d, gg, h = b, c, f  # symmetric
+    co = (e * k - f * h, -(b * k - c * h), b * f - c * e,
+          -(d * k - f * gg), a * k - c * gg, -(a * f - c * d),
+          d * h - e * gg, -(a * h - b * gg), a * e - b * d)
+    det = a * co[0] + b * co[3] + c * co[6]
+    return tuple(v / det for v in co)
+
+
 def _wheel_data(entry: tuple, steer: float, C: tuple) -> tuple:
     """A driven wheel's column of P = J^+ B and its stick-check data at a steering angle."""
-    px, py, heading, radius, is_mecanum, gamma, _slot, cap2 = entry
+    px, py, heading, radius, is_mecanum, gamma, _slot, cap2, is_free = entry
     c0, c1, c2, c3, c4, c5, c6, c7, c8 = C
     h = heading + steer
     ex, ey = math.cos(h), math.sin(h)
+    if is_free:  # only the lateral row: no column in P, the impulse along n is checked
+        return (0.0, 0.0, 0.0), (px, py, -ey, ex, 0.0, cap2, False)
     if is_mecanum:
         a = h + math.pi / 2 + gamma
         dx, dy = math.cos(a), math.sin(a)
@@ -397,8 +434,13 @@ class ContactModel:
         self.mass_diag, self.caps = base.mass_diag, base.caps
         self.stick_flags, self.stick_speeds = base.stick_flags, base.stick_speeds
         steer, C = self.steering, base.C_flat
-        data = [fixed if fixed is not None else _wheel_data(entry, steer[entry[6]], C)
-                for entry, fixed in zip(base.table, base.fixed, strict=True)]
+        if base.has_free:
+            C = _free_gram_inverse(base, steer)
+            data = [_wheel_data(entry, steer[entry[6]] if entry[6] >= 0 else 0.0, C)
+                    for entry in base.table]
+        else:
+            data = [fixed if fixed is not None else _wheel_data(entry, steer[entry[6]], C)
+                    for entry, fixed in zip(base.table, base.fixed, strict=True)]
         self._cols = tuple(d[0] for d in data)
         self._fast = tuple(d[1] for d in data)
         self._C = C
@@ -413,8 +455,14 @@ class ContactModel:
         slip path's matrices are dropped (they are rebuilt when next needed)."""
         self.steering = steering
         cols, fast, C = list(self._cols), list(self._fast), self._C
-        for j, entry in self._steered:
-            cols[j], fast[j] = _wheel_data(entry, steering[entry[6]], C)
+        if self.base.has_free:  # C depends on the free wheels' steering: every column changes
+            C = self._C = _free_gram_inverse(self.base, steering)
+            for j, entry in enumerate(self.base.table):
+                cols[j], fast[j] = _wheel_data(
+                    entry, steering[entry[6]] if entry[6] >= 0 else 0.0, C)
+        else:
+            for j, entry in self._steered:
+                cols[j], fast[j] = _wheel_data(entry, steering[entry[6]], C)
         self._cols, self._fast = tuple(cols), tuple(fast)
         self._np_ready = False
         self._block_data = None
@@ -627,7 +675,8 @@ class ContactModel:
                 Aw = J[rows] @ WJt[:, rows]
                 blocks.append((rows, [tuple(J[i]) for i in rows],
                                [tuple(WJt[:, i]) for i in rows],
-                               np.linalg.inv(Aw).tolist(), float(self.caps[w])))
+                               (np.linalg.pinv(Aw) if self.base.table[w][8]  # free: rank 1
+                                else np.linalg.inv(Aw)).tolist(), float(self.caps[w])))
             self._block_data = blocks
         return self._block_data
 

@@ -19,7 +19,12 @@ Its kind says which velocities the ground contact constrains (see :mod:`.contact
     axle, counter-clockwise seen from above, for the roller touching the ground: only the
     velocity along that roller axis ``u`` is constrained, to ``r_w * phi * (u . e)``;
 ``"caster"``
-    a passive swivel wheel: it carries its share of the weight and exerts no force.
+    a passive swivel wheel: it carries its share of the weight and exerts no force;
+``"free"``
+    a steered wheel that rolls freely (no drive torque, e.g. a car's front wheel): only its
+    lateral velocity is constrained, to zero; along ``e`` it exerts no force. Its "rate" is
+    not a command: it is the rate it rolls at in the kinematic model (what its wheel angle
+    and encoder record).
 
 Driven wheels (every kind but casters) are commanded in wheel terms: an angular rate ``phi``
 (rad/s, positive = rolling forward along ``e``) per wheel in :attr:`VehicleSpec.wheel_names`
@@ -76,7 +81,7 @@ __all__ = [
 #: Gravitational acceleration used for the wheels' normal loads, N_i = load_fraction * m * g.
 GRAVITY = 9.81
 
-WHEEL_KINDS = ("fixed", "steered", "mecanum", "caster")
+WHEEL_KINDS = ("fixed", "steered", "mecanum", "caster", "free")
 
 
 def _point(name: str, value) -> tuple[float, float]:
@@ -100,7 +105,7 @@ class Wheel:
         Angle of the rolling direction ``e`` from the body x axis at zero steering, rad.
     radius : float
         Wheel radius r_w, m (> 0).
-    kind : {"fixed", "steered", "mecanum", "caster"}
+    kind : {"fixed", "steered", "mecanum", "caster", "free"}
         See the module docstring.
     roller_angle : float
         Mecanum only: angle gamma from the wheel's axle (``n``) to the axis ``u`` of the roller
@@ -169,6 +174,8 @@ def _constrains_twist(driven) -> bool:
         if w.kind == "mecanum":
             a = h + math.pi / 2 + w.roller_angle
             dirs = [(math.cos(a), math.sin(a))]
+        elif w.kind == "free":
+            dirs = [(-math.sin(h), math.cos(h))]
         else:
             dirs = [(math.cos(h), math.sin(h)), (-math.sin(h), math.cos(h))]
         rows += [(dx, dy, px * dy - py * dx) for dx, dy in dirs]
@@ -306,7 +313,7 @@ class VehicleSpec:
         object.__setattr__(self, "seed", int(self.seed))
         object.__setattr__(self, "motor_time_constant",
                            V.nonnegative("motor_time_constant", self.motor_time_constant))
-        steered = [w.name for w in wheels if w.kind == "steered"]
+        steered = [w.name for w in wheels if w.kind in ("steered", "free")]
         order = tuple(steered) if self.steered_names is None else tuple(self.steered_names)
         if sorted(order) != sorted(steered):
             raise ValueError(
@@ -609,7 +616,7 @@ def _ideal(table: tuple, vx: float, vy: float, w: float, current: tuple
     rolls = True
     for kind, px, py, h, ex, ey, ux, uy, r, slot in table:
         cx, cy = vx - w * py, vy + w * px
-        if kind == "steered":
+        if kind == "steered" or kind == "free":
             speed = math.hypot(cx, cy)
             if speed < 1e-12:
                 sign, speed = 1.0, 0.0

@@ -16,7 +16,6 @@ every panel (:func:`all_panels`) and the benchmarks can time every redraw.
 
 from __future__ import annotations
 
-import importlib
 import io
 import time
 from collections.abc import Callable, Mapping
@@ -28,11 +27,13 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from wheelkin._registry import load_chapter_modules
+
 __all__ = ["Panel", "all_panels", "register", "slider_values"]
 
 _FACTORIES: dict[str, Callable[[], Panel]] = {}
 CHAPTER_MODULES = ("conventions", "sandbox", "rover", "mecanum", "diffdrive", "odometry",
-                   "waypoints", "unified")
+                   "waypoints", "unified", "carlike")
 
 
 class Panel:
@@ -56,8 +57,25 @@ class Panel:
     title : str, optional
         Shown above the controls.
     dpi : int
-        Resolution of the rendered PNG.
+        Resolution of the rendered PNG (default: the book's, :data:`wheelkin.style.DPI`).
+
+    The figure is built under the book's figure style (:func:`wheelkin.style.setup`'s
+    matplotlib defaults) and shown at its natural size: the image widget is exactly as many
+    CSS pixels as the PNG, never stretched by the output area, so its text is as large as
+    drawn (at least 11 px for 8 pt at 100 dpi). More than :data:`ONE_COLUMN_CONTROLS`
+    controls are laid out in two columns, so that a panel with its sliders fits a
+    1366x768 laptop screen (:data:`MAX_HEIGHT_PX`).
     """
+
+    #: Up to this many controls are stacked in one column; more go into two columns.
+    ONE_COLUMN_CONTROLS = 3
+    #: The height of one row of controls in JupyterLab (a 28 px slider and its margins).
+    ROW_PX = 32
+    #: The height of the title line.
+    TITLE_PX = 24
+    #: The tallest a panel may be, title, controls and figure together: what a 1366x768
+    #: laptop shows of a notebook (768 px less the browser's and JupyterLab's bars).
+    MAX_HEIGHT_PX = 600
 
     def __init__(
         self,
@@ -66,12 +84,18 @@ class Panel:
         update: Callable[..., None],
         *,
         title: str | None = None,
-        dpi: int = 72,
+        dpi: int | None = None,
     ) -> None:
+        from wheelkin import style
+
+        if dpi is None:
+            dpi = style.DPI
+        if not (isinstance(dpi, int | float) and 50 <= dpi <= 300):
+            raise ValueError(f"dpi must be in [50, 300], got {dpi!r}")
         self.controls = dict(controls)
         self._update = update
         self.dpi = dpi
-        with plt.ioff():
+        with plt.ioff(), plt.rc_context(style._RC):
             self.figure, self.state = setup()
         # The panel shows its figure through the Image widget only: keep pyplot from showing
         # it again under a later cell.
@@ -80,12 +104,28 @@ class Panel:
         self.figure.set_dpi(dpi)
         self._blit: list | None = None
         self._background = None
-        self.image = widgets.Image(format="png")
+        width, height = self.size_px
+        # The natural size, in CSS pixels: the output area must not stretch the image.
+        self.image = widgets.Image(format="png", layout=widgets.Layout(
+            width=f"{width}px", height=f"{height}px", max_width="none", flex="0 0 auto"))
         self.title = title
         self._muted = False
         for control in self.controls.values():
             control.observe(self._on_change, names="value")
         self.redraw()
+
+    @property
+    def size_px(self) -> tuple[int, int]:
+        """The rendered image's size in pixels: (width, height) = figure size x dpi."""
+        return (round(self.figure.get_figwidth() * self.dpi),
+                round(self.figure.get_figheight() * self.dpi))
+
+    @property
+    def height_px(self) -> int:
+        """The panel's height on screen: title, rows of controls and figure."""
+        n = len(self.controls)
+        rows = n if n <= self.ONE_COLUMN_CONTROLS else -(-n // 2)
+        return (self.TITLE_PX if self.title else 0) + rows * self.ROW_PX + self.size_px[1]
 
     def values(self) -> dict[str, Any]:
         """The controls' current values, by name."""
@@ -140,7 +180,13 @@ class Panel:
         children = []
         if self.title:
             children.append(widgets.HTML(f"<b>{self.title}</b>"))
-        children.append(widgets.VBox(list(self.controls.values())))
+        controls = list(self.controls.values())
+        if len(controls) <= self.ONE_COLUMN_CONTROLS:
+            children.append(widgets.VBox(controls))
+        else:
+            half = -(-len(controls) // 2)
+            children.append(widgets.HBox([widgets.VBox(controls[:half]),
+                                          widgets.VBox(controls[half:])]))
         children.append(self.image)
         return widgets.VBox(children)
 
@@ -197,10 +243,5 @@ def register(name: str) -> Callable[[Callable[[], Panel]], Callable[[], Panel]]:
 
 def all_panels() -> dict[str, Callable[[], Panel]]:
     """Every registered panel factory, by name (imports every chapter's module)."""
-    for mod in CHAPTER_MODULES:
-        try:
-            importlib.import_module(f"{__name__}.{mod}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{mod}":
-                raise
+    load_chapter_modules(__name__, CHAPTER_MODULES)
     return dict(_FACTORIES)

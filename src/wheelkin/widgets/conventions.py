@@ -18,12 +18,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation
 from matplotlib.figure import Figure
-from matplotlib.patches import Polygon
+from matplotlib.patches import FancyArrowPatch, Polygon
 
 from wheelkin import frames
 from wheelkin.widgets import Panel, register
 
-__all__ = ["TwistView", "twist_animation", "twist_icr_panel"]
+__all__ = ["TwistView", "angle_arc", "arrow", "body_axes", "draw_vehicle", "turn_arrow",
+           "twist_animation", "twist_icr_panel"]
 
 BODY_LENGTH = 0.6  # m, along body x
 BODY_WIDTH = 0.4  # m, along body y
@@ -167,8 +168,8 @@ class TwistView:
         return self.artists
 
 
-def _figure(figsize=(5.0, 5.0), dpi=72):
-    fig = plt.figure(figsize=figsize, dpi=dpi)
+def _figure(figsize=(5.0, 5.0), dpi=100):
+    fig = plt.figure(figsize=figsize, dpi=dpi, layout="none")
     fig.subplots_adjust(left=0.13, right=0.97, bottom=0.1, top=0.97)
     return fig
 
@@ -190,19 +191,19 @@ def twist_icr_panel() -> Panel:
     def setup():
         # A Figure outside pyplot: the panel redraws it itself, and pyplot never shows it again
         # under a later cell.
-        fig = Figure(figsize=(5.0, 5.0), dpi=72)
+        fig = Figure(figsize=(5.0, 5.0), dpi=100, layout="none")
         fig.subplots_adjust(left=0.13, right=0.97, bottom=0.1, top=0.97)
         return fig, TwistView(fig.add_subplot(1, 1, 1))
 
     def update(view, vx, vy, omega):
         return view.update(vx, vy, omega)  # the moving artists: the panel blits them
 
-    return Panel(controls, setup, update,
+    return Panel(controls, setup, update, dpi=100,
                  title="A constant twist: the path, the ICR and the corner velocities")
 
 
-def twist_animation(twist: frames.Twist | None = None, frames_count: int = 60,
-                    figsize=(5.0, 5.0), dpi=72) -> FuncAnimation:
+def twist_animation(twist: frames.Twist | None = None, frames_count: int = 40,
+                    figsize=(6.7, 4.4), dpi=100) -> FuncAnimation:
     """The body turning once about its ICR under a constant ``twist`` (one full turn).
 
     The ICR stays fixed in the world while the body turns about it; every corner's velocity
@@ -215,6 +216,10 @@ def twist_animation(twist: frames.Twist | None = None, frames_count: int = 60,
         raise ValueError(f"frames_count must be in [2, 200], got {frames_count!r}")
     fig = _figure(figsize, dpi)
     view = TwistView(fig.add_subplot(1, 1, 1), ghosts=0)
+    if figsize[0] > 1.2 * figsize[1]:  # a wide frame: the square plot left, the text right
+        view.ax.set_position([0.09, 0.11, 0.55, 0.86])
+        view.info.set_transform(fig.transFigure)
+        view.info.set_position((0.66, 0.92))
     period = 2 * math.pi / abs(twist.omega)
     n = frames_count
     poses = frames.integrate_twist(np.tile(twist.as_array(), (n, 1)), period / n, view.start)
@@ -228,9 +233,74 @@ def twist_animation(twist: frames.Twist | None = None, frames_count: int = 60,
         pose = frames.Pose(*poses[k])
         view.draw_body(pose, twist)
         trail.set_data(poses[: k + 1, 0], poses[: k + 1, 1])
-        title.set_text(f"vx={twist.vx:+.2f} vy={twist.vy:+.2f} m/s  ω={twist.omega:+.2f} "
-                       f"rad/s\nt = {k * period / n:4.1f} s")
+        title.set_text(f"vx = {twist.vx:+.2f} m/s\nvy = {twist.vy:+.2f} m/s\n"
+                       f"ω  = {twist.omega:+.2f} rad/s\nt  = {k * period / n:4.1f} s")
         return []
 
     draw(0)
     return FuncAnimation(fig, draw, frames=n, interval=100, blit=False)
+
+
+# ------------------------------------------------------------------ chapter 1's drawings
+def arrow(ax, start, end, colour, label=None, offset=(0.0, 0.0), lw=1.8, fontsize=11, **kw):
+    """An arrow from ``start`` to ``end`` with an optional label at its tip (+ ``offset``)."""
+    ax.annotate("", xy=end, xytext=start,
+                arrowprops={"arrowstyle": "-|>", "color": colour, "lw": lw, **kw})
+    if label:
+        ax.text(end[0] + offset[0], end[1] + offset[1], label, color=colour, fontsize=fontsize,
+                ha="center", va="center")
+
+
+def draw_vehicle(ax, pose, length, width, wheels, wheel_size=(0.22, 0.08), body_colour="#e6e6e6",
+                 labels=True, fontsize=8, label_shift=None):
+    """A rectangle with wheels; ``wheels`` maps a label to a body-frame position (x fwd, y left)."""
+    corners = np.array([[length / 2, width / 2], [length / 2, -width / 2],
+                        [-length / 2, -width / 2], [-length / 2, width / 2]])
+    ax.add_patch(Polygon(frames.transform_points(pose, corners), closed=True, fc=body_colour,
+                         ec="#444444", lw=1.0, zorder=2))
+    wl, ww = wheel_size
+    for name, (px, py) in wheels.items():
+        outline = np.array([[wl / 2, ww / 2], [wl / 2, -ww / 2], [-wl / 2, -ww / 2],
+                            [-wl / 2, ww / 2]]) + np.array([px, py])
+        ax.add_patch(Polygon(frames.transform_points(pose, outline), closed=True,
+                             fc="#555555", ec="k", lw=0.6, zorder=3))
+        if labels:
+            out = 1.0 if py >= 0 else -1.0
+            shift = (label_shift or {}).get(name, (0.0, 0.0))
+            lx, ly = frames.transform_points(
+                pose, np.array([px + shift[0], py + out * (ww / 2 + 0.14) + shift[1]]))
+            ax.text(lx, ly, name, fontsize=fontsize, ha="center", va="center", zorder=4)
+
+
+def body_axes(ax, pose, size, names=("$x$", "$y$"), colours=("#d62728", "#2ca02c"), lw=1.8,
+              directions=((1.0, 0.0), (0.0, 1.0)), label_gap=1.25, **kw):
+    """A body frame's two axes at ``pose``, ``size`` long, labelled beyond their tips."""
+    origin = np.array([pose.x, pose.y])
+    for name, colour, d in zip(names, colours, directions, strict=True):
+        end = frames.transform_points(pose, size * np.array(d))
+        arrow(ax, origin, end, colour, lw=lw, **kw)
+        tip = frames.transform_points(pose, size * label_gap * np.array(d))
+        ax.text(tip[0], tip[1], name, color=colour, ha="center", va="center", fontsize=11)
+
+
+def angle_arc(ax, centre, radius, start, end, colour, label, label_radius=None, lw=1.2):
+    """An arrowed arc from angle ``start`` to ``end`` (rad) about ``centre``, labelled."""
+    t = np.linspace(start, end, 40)
+    ax.plot(centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t), color=colour, lw=lw)
+    ax.annotate("", xy=(centre[0] + radius * np.cos(t[-1]), centre[1] + radius * np.sin(t[-1])),
+                xytext=(centre[0] + radius * np.cos(t[-3]), centre[1] + radius * np.sin(t[-3])),
+                arrowprops={"arrowstyle": "-|>", "color": colour, "lw": lw})
+    mid = (start + end) / 2
+    lr = label_radius or radius * 1.25
+    ax.text(centre[0] + lr * np.cos(mid), centre[1] + lr * np.sin(mid), label, color=colour,
+            ha="center", va="center", fontsize=11)
+
+
+def turn_arrow(ax, centre, radius, start, end, colour, label, label_pos):
+    """A curved arrow showing a sense of rotation, labelled at ``label_pos``."""
+    a = (centre[0] + radius * np.cos(start), centre[1] + radius * np.sin(start))
+    b = (centre[0] + radius * np.cos(end), centre[1] + radius * np.sin(end))
+    rad = 0.45 if end > start else -0.45
+    ax.add_patch(FancyArrowPatch(a, b, connectionstyle=f"arc3,rad={rad}", arrowstyle="-|>",
+                                 mutation_scale=12, color=colour, lw=1.4, zorder=5))
+    ax.text(*label_pos, label, color=colour, ha="center", va="center", fontsize=10)

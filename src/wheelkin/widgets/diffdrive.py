@@ -56,7 +56,7 @@ class DiffDriveView:
         self.enc = steps_per_m
         self.fig = fig
         gs = fig.add_gridspec(1, 2, width_ratios=(1.0, 1.2), wspace=0.3, left=0.11,
-                              right=0.98, bottom=0.15, top=0.84)
+                              right=0.96, bottom=0.15, top=0.78)
         ax = self.ax = fig.add_subplot(gs[0])
         bx = self.bx = fig.add_subplot(gs[1])
         ax.set_xlim(*_XLIM)
@@ -75,7 +75,7 @@ class DiffDriveView:
         ax.text(-half, -26, "L", ha="center", va="top", fontsize=8)
         ax.text(half, -26, "R", ha="center", va="top", fontsize=8)
         self.icr = ax.plot([], [], marker="o", color="k", ms=5, ls="none", zorder=6)[0]
-        self.icr_text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=7,
+        self.icr_text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=8,
                                 va="bottom")
         self.printed_marks = ax.plot([], [], ls="none", marker="_", ms=14, mew=2,
                                      color="#ff7f0e", zorder=7)[0]
@@ -95,11 +95,12 @@ class DiffDriveView:
         bx.set_yticks(y, _ROWS, fontsize=8)
         bx.invert_yaxis()
         bx.set_xlim(-3000, 3000)
+        bx.set_xticks([-2000, 0, 2000])
         self.zero_line = bx.axvline(0, color="k", lw=0.6)  # drawn over the bars
         bx.set_xlabel("wheel speed (steps/s)")
-        bx.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=7,
+        bx.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=8,
                   frameon=False)
-        self.bar_text = [bx.text(-2900, i + 0.42, "", fontsize=7, va="center")
+        self.bar_text = [bx.text(-2900, i + 0.42, "", fontsize=8, va="center")
                          for i in range(3)]
         self.title = fig.suptitle("", fontsize=9, y=0.99)
         # Everything update() moves, in drawing order: a panel redraws only these over a
@@ -172,7 +173,7 @@ def wheel_speeds_panel() -> Panel:
     """Sliders for v and omega in the firmware's units, driving :class:`DiffDriveView`."""
 
     def setup():
-        fig = Figure(figsize=(7.5, 3.4), dpi=72)  # not pyplot's: never shown by accident
+        fig = Figure(figsize=(6.7, 3.6), dpi=100, layout="none")  # not pyplot's
         return fig, DiffDriveView(fig)
 
     def update(view: DiffDriveView, v_steps_per_s: int, omega_mrad_per_s: int) -> list:
@@ -193,9 +194,9 @@ def wheel_speeds_panel() -> Panel:
 register("diffdrive.wheel_speeds")(wheel_speeds_panel)
 
 
-def sweep_animation(v_steps_per_s: int = 1000, omega_max: int = 4500, frames: int = 46):
+def sweep_animation(v_steps_per_s: int = 1000, omega_max: int = 4500, frames: int = 40):
     """Sweep omega from 0 to ``omega_max`` mrad/s at a fixed v (a FuncAnimation)."""
-    fig = Figure(figsize=(7.0, 3.2), dpi=72)
+    fig = Figure(figsize=(6.7, 3.6), dpi=100, layout="none")
     view = DiffDriveView(fig)
     omegas = np.round(np.linspace(0, omega_max, frames)).astype(int)
 
@@ -224,8 +225,8 @@ class SpeedometerView:
         ax.set_xlabel("time (ms)")
         ax.set_ylabel("speed (mm/s)")
         ax.grid(True, lw=0.3, alpha=0.5)
-        legend = ax.legend(loc="upper right", fontsize=7)
-        self.text = ax.text(0.02, 0.97, "", transform=ax.transAxes, fontsize=7, va="top")
+        legend = ax.legend(loc="upper right", fontsize=8)
+        self.text = ax.text(0.02, 0.97, "", transform=ax.transAxes, fontsize=8, va="top")
         # The speed axis takes a few fixed tops (not 2.2 x every speed), so that a panel can
         # redraw only the lines and the text over a cached picture of the axes while the top
         # holds; ``view`` (an invisible marker) changes whenever the top does, so that the
@@ -277,7 +278,7 @@ def speedometer_panel() -> Panel:
     """Sliders for the wheel speed, the window and the minimum step count."""
 
     def setup():
-        fig = Figure(figsize=(6.0, 3.4), dpi=72)
+        fig = Figure(figsize=(6.0, 3.4), dpi=100)
         return fig, SpeedometerView(fig)
 
     def update(view: SpeedometerView, speed_mm_per_s: float, window_ms: float,

@@ -181,8 +181,8 @@ def simulate_go_to_point(start, goal, speed, max_omega, *, geometry=EXAMPLE_GEOM
 def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
                   plan_label: str = "predicted", path_label: str = "path",
                   extra_paths=None, frames_count: int = 60, title: str | None = None,
-                  texts=None, limits=None, slipping=None, figsize=(5, 4),
-                  dpi: int = 72) -> SandboxAnimation:
+                  texts=None, limits=None, slipping=None, figsize=(6.7, 4.2),
+                  dpi: int = 100) -> SandboxAnimation:
     """A kernel-free animation of the vehicle moving through ``poses`` (N, 3).
 
     The axes are drawn once and each frame only redraws the moving artists
@@ -196,7 +196,7 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
     """
     poses = np.asarray(poses, dtype=float)
     idx = np.linspace(0, len(poses) - 1, frames_count).round().astype(int)
-    fig, ax = plt.subplots(figsize=figsize, dpi=dpi)
+    fig, ax = plt.subplots(figsize=figsize, dpi=dpi, layout="none")
     ax.set_aspect("equal")
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.set_xlabel("x (m)")
@@ -225,10 +225,10 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
     if plan is not None or extra:
         ax.legend(loc="upper right", fontsize=8)
     if title:
-        fig.suptitle(title, fontsize=10)
-    label = ax.text(0.5, 1.02, "", transform=ax.transAxes, ha="center", va="bottom",
-                    fontsize=8, family="monospace")
-    fig.tight_layout()
+        ax.set_title(title, fontsize=10, loc="left")
+    label = fig.text(0.02, 0.02, "", ha="left", va="bottom", fontsize=9,
+                     family="monospace")
+    fig.subplots_adjust(left=0.1, right=0.97, top=0.93, bottom=0.2)
 
     def update(k):
         i = idx[k]
@@ -344,7 +344,8 @@ def _message_axes(fig):
 def _floor_axes(bottom: float):
     """The panels' figure: a 10 m x 10 m floor around the start, metres, equal scale, with
     ``bottom`` of the figure left free for the panel's text."""
-    fig, ax = plt.subplots(figsize=(5, 4.6), dpi=72)
+    fig, ax = plt.subplots(figsize=(4.9, 4.5), dpi=72,  # fits a 1366 x 768 screen
+                           layout="none")
     fig.subplots_adjust(bottom=bottom)
     ax.set_aspect("equal")
     ax.grid(True, lw=0.4, alpha=0.5)

@@ -3,8 +3,8 @@
 ``odometry.square`` drives the Radon Ulzer robot around a 1 m square with rounded corners
 (kinematically: the wheels roll without slip) and dead-reckons it from its quantised encoder
 counts, with three sliders: the odometry's update step (mm of wheel travel per update), a
-wheel-diameter mismatch (right wheel larger than the left, %) and a wheel-base error (the
-wheel base the odometry assumes, % off the true one). It shows the true path, the exact-arc
+wheel-diameter mismatch (right wheel larger than the left, %) and a track-width error (the
+track width W the odometry assumes, % off the true one). It shows the true path, the exact-arc
 estimate and the Euler estimate, and their end-point errors.
 
 :func:`simulate_square` is the model behind it, usable on its own (the chapter uses it too).
@@ -25,7 +25,7 @@ from wheelkin.widgets import Panel, register
 __all__ = ["rounded_square", "simulate_square", "square_panel"]
 
 STEPS_PER_MM = 8.043  # Radon Ulzer: ENC = 8043 steps/m
-WHEEL_BASE_MM = 85.0  # Radon Ulzer: W
+WHEEL_BASE_MM = 85.0  # Radon Ulzer: the track width W (wheel to wheel, side to side)
 SIDE_MM = 1000.0
 CORNER_RADIUS_MM = 150.0
 STEP_OPTIONS = (1, 2, 5, 10, 20, 50, 100)  # mm of wheel travel per odometry update
@@ -61,9 +61,9 @@ def simulate_square(step_mm=10.0, diameter_error_pct=0.0, base_error_pct=0.0, *,
                     methods=("exact", "euler")):
     """True path and dead-reckoned estimates of the rounded square.
 
-    The true robot has wheel base W = 85 mm and wheel diameters D_L = D (1 − e/2),
+    The true robot has track width W = 85 mm and wheel diameters D_L = D (1 − e/2),
     D_R = D (1 + e/2) with e = ``diameter_error_pct``/100, so an encoder step is
-    (1 ∓ e/2)/ENC_mm of travel. The odometry assumes equal wheels and a wheel base
+    (1 ∓ e/2)/ENC_mm of travel. The odometry assumes equal wheels and a track width
     W (1 + ``base_error_pct``/100).
 
     Returns
@@ -88,7 +88,7 @@ def simulate_square(step_mm=10.0, diameter_error_pct=0.0, base_error_pct=0.0, *,
 
 
 def _setup():
-    fig, ax = plt.subplots(figsize=(5.2, 4.6))
+    fig, ax = plt.subplots(figsize=(5.6, 4.5), dpi=100, layout="tight")
     ax.set_aspect("equal")
     (xlim, ylim, where, _) = _VIEWS["counter-clockwise"]
     ax.set_xlim(*xlim)
@@ -101,13 +101,12 @@ def _setup():
     euler = ax.plot([], [], color="#ff7f0e", lw=1.1, ls="--", label="odometry, Euler")[0]
     origin = ax.plot([0], [0], marker="o", color="k", ms=5, ls="none")[0]
     ends = ax.plot([], [], marker="x", color="#1f77b4", ms=8, ls="none")[0]
-    legend = ax.legend(loc=where, fontsize=7)
+    legend = ax.legend(loc=where, fontsize=8)
     text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=8, va="bottom",
                    family="monospace", bbox={"fc": "white", "ec": "#999999", "alpha": 0.9})
     message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center", va="center",
                       color="#b35900", fontsize=10, bbox={"fc": "white", "ec": "#b35900"})
     message.set_visible(False)
-    fig.tight_layout()
     # What _update moves, in drawing order: the panel redraws only these over a cached
     # picture of the rest (axes, ticks, grid). The start mark, the frame and the legend do not
     # move but are drawn over the paths. A change of direction changes the view: the marker of the
@@ -167,7 +166,7 @@ def _update(state, step_mm, diameter_error_pct, base_error_pct, direction):
 
 @register("odometry.square")
 def square_panel() -> Panel:
-    """Step size, wheel-diameter mismatch and wheel-base error on a 1 m rounded square."""
+    """Step size, wheel-diameter mismatch and track-width error on a 1 m rounded square."""
     style = {"description_width": "initial"}
     layout = widgets.Layout(width="420px")
     controls = {
@@ -178,7 +177,7 @@ def square_panel() -> Panel:
                                                   description="right wheel larger by (%)",
                                                   style=style, layout=layout),
         "base_error_pct": widgets.FloatSlider(value=0.0, min=-10.0, max=10.0, step=0.5,
-                                              description="assumed wheel base off by (%)",
+                                              description="assumed track width off by (%)",
                                               style=style, layout=layout),
         "direction": widgets.Dropdown(options=["counter-clockwise", "clockwise"],
                                       value="counter-clockwise", description="direction",

@@ -1,11 +1,13 @@
-"""The rover chapter's live panel and its kernel-free twin (notebooks/03_rover).
+"""The rover chapter's live panel and its kernel-free twin (notebooks/03_rover/).
 
 :class:`RoverView` draws the Open Source Rover from above (forward up the page, its right to
 the right of the page, inches) with its six wheels at their steering angles, the turning
 centre (ICR), the arc each wheel rolls along while the rover turns through the same angle,
-and bars of the six wheel speeds. ``update(command, speed)`` moves the artists in place; the
-panel ``rover.steering`` drives it with two sliders and :func:`sweep_animation` sweeps the
-command from -100 to 100 for the HTML book.
+and bars of the six wheel speeds. Corner angles are labelled in the book's sign: delta > 0
+turns the wheel to the LEFT (counter-clockwise seen from above); the document's delta_OSR is
+-delta. ``update(command, speed)`` moves the artists in place; the panel ``rover.steering``
+drives it with two sliders and :func:`sweep_animation` sweeps the command from -100 to 100 for
+the HTML book.
 """
 
 from __future__ import annotations
@@ -88,7 +90,7 @@ class RoverView:
         self.labels = []
         for px, py in scr:
             left = px < 0
-            self.labels.append(ax.text(px + (-2.2 if left else 2.2), py, "", fontsize=7,
+            self.labels.append(ax.text(px + (-2.2 if left else 2.2), py, "", fontsize=8,
                                        ha="right" if left else "left", va="center",
                                        zorder=6))
         for i, label in enumerate(self.labels):
@@ -96,7 +98,7 @@ class RoverView:
                 label.set_text(str(i + 1))
         self.icr = ax.plot([], [], marker="o", color="k", ms=5, zorder=6, ls="none")[0]
         self.icr_text = ax.text(0, 0, "", fontsize=8, ha="center", va="top", zorder=6)
-        self.title = ax.set_title("", fontsize=9)
+        self.title = ax.set_title("", fontsize=9, loc="left")
         self.message = ax.text(0.5, 0.5, "", transform=ax.transAxes, ha="center",
                                va="center", color="#b35900", fontsize=10, zorder=10,
                                bbox={"fc": "white", "ec": "#b35900"})
@@ -109,10 +111,10 @@ class RoverView:
         bx.set_ylabel("wheel speed (% of full)")
         bx.axhline(0, color="k", lw=0.6)
         self.centre_line = bx.axhline(0, color="k", lw=1.0, ls=":")
-        self.centre_text = bx.text(5.45, 0, "", ha="right", va="bottom", fontsize=7)
-        self.bar_text = [bx.text(i, 0, "", ha="center", va="bottom", fontsize=7)
+        # The body centre's speed is named in the title, never over the bars' values.
+        self.centre_text = bx.set_title("", fontsize=9)
+        self.bar_text = [bx.text(i, 0, "", ha="center", va="bottom", fontsize=8)
                          for i in range(6)]
-        bx.set_title("wheel speeds", fontsize=9)
         # Everything update() moves, in drawing order: a panel redraws only these over a
         # cached picture of the rest (fixed limits, so the axes never change). The body, its
         # centre mark, the middle wheels' labels and the frame do not change, but are drawn
@@ -150,11 +152,11 @@ class RoverView:
         straight = not np.any(angles)
         steer = np.zeros(6)
         for i, k in _CORNER_OF_WHEEL.items():
-            steer[i] = -angles[k]  # REP-103: counter-clockwise positive
+            steer[i] = -angles[k]  # the book's delta (left positive) = -delta_OSR
         for i, patch in enumerate(self.wheels):
             patch.set_xy(self._wheel_outline(i, steer[i]))
-        for i, k in _CORNER_OF_WHEEL.items():
-            angle = f"{math.degrees(angles[k]):+.1f}°"
+        for i in _CORNER_OF_WHEEL:
+            angle = f"{math.degrees(steer[i]):+.1f}°".replace("-", "−")
             self.labels[i].set_text(f"{angle} {i + 1}" if i < 3 else f"{i + 1} {angle}")
         scr = _screen(self.pos)
         if straight:
@@ -201,17 +203,16 @@ class RoverView:
             self.bar_text[i].set_position((i, max(speeds[i], 0.0) + 1.0))
             self.bar_text[i].set_text(f"{speeds[i]:.0f}")
         self.centre_line.set_ydata([centre, centre])
-        self.centre_text.set_position((5.45, centre + 1.0))
-        self.centre_text.set_text(f"body centre {centre:.0f}")
+        self.centre_text.set_text(f"body centre (dotted): {centre:.0f}")
         return self.artists
 
 
-def _figure(figsize=(8.0, 4.0), dpi=72) -> Figure:
+def _figure(figsize=(6.7, 3.5), dpi=100) -> Figure:
     # A figure unknown to pyplot: the inline backend never shows it by itself (a live panel
     # renders it into its own image; an animation into its HTML player).
-    fig = Figure(figsize=figsize, dpi=dpi)
+    fig = Figure(figsize=figsize, dpi=dpi, layout="none")
     FigureCanvasAgg(fig)
-    fig.subplots_adjust(left=0.08, right=0.98, bottom=0.14, top=0.92)
+    fig.subplots_adjust(left=0.09, right=0.99, bottom=0.15, top=0.92)
     return fig
 
 
@@ -232,12 +233,12 @@ def steering_panel() -> Panel:
     def update(view: RoverView, command: int, speed: int) -> list:
         return view.update(command, speed)  # the moving artists: the panel blits them
 
-    return Panel(controls, setup, update,
+    return Panel(controls, setup, update, dpi=100,
                  title="Open Source Rover: steering command and speed")
 
 
 def sweep_animation(frames: int = 33, speed: float = 100.0, *, mapping: str = "radius",
-                    figsize=(6.4, 3.3), dpi: int = 72, interval: int = 250) -> FuncAnimation:
+                    figsize=(6.7, 3.5), dpi: int = 100, interval: int = 250) -> FuncAnimation:
     """The steering command swept from -100 to 100 in ``frames`` steps (0 included when
     ``frames`` is odd), as a FuncAnimation for :func:`wheelkin.animation.show`."""
     commands = np.linspace(-100.0, 100.0, frames)

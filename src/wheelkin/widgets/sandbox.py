@@ -17,6 +17,7 @@ import ipywidgets as widgets
 import numpy as np
 from matplotlib.figure import Figure
 
+from wheelkin._kernels import arc_step
 from wheelkin.sandbox import RADON_ULZER, World
 from wheelkin.sandbox.render import draw_vehicle
 from wheelkin.sandbox.vehicles import GRAVITY
@@ -97,11 +98,9 @@ def _run(mu: float, omega: float):
     s = np.minimum(t / RAMP, 1.0)
     v, w = SPEED * s, omega * s
     theta = np.concatenate([[0.0], np.cumsum(w * DT)])
-    half = 0.5 * w * DT
-    chord = v * DT * np.sinc(half / np.pi)
-    mid = theta[:-1] + half
-    ideal = np.column_stack([np.concatenate([[0.0], np.cumsum(chord * np.cos(mid))]),
-                             np.concatenate([[0.0], np.cumsum(chord * np.sin(mid))])])
+    dx, dy, _ = arc_step(0.0, 0.0, theta[:-1], v * DT, w * DT)  # each step's arc, world frame
+    ideal = np.column_stack([np.concatenate([[0.0], np.cumsum(dx)]),
+                             np.concatenate([[0.0], np.cumsum(dy)])])
     need = SPEED * abs(omega)
     grip = 0.8 * spec.mu * GRAVITY
     off = math.dist(traj.pose[-1, :2], ideal[-1])

@@ -55,18 +55,23 @@ class ConstraintView:
     Parameters
     ----------
     fig : matplotlib.figure.Figure
-        An empty figure; one axes per vehicle is added in a row.
+        An empty figure; one axes per vehicle is added, ``columns`` to a row.
     vehicles : dict of str to VehicleSpec
         Default :data:`VEHICLES`.
+    columns : int
+        Axes per row (default 2: four vehicles in a 2 x 2 grid that fits the text column).
     """
 
-    def __init__(self, fig: Figure, vehicles: dict | None = None) -> None:
+    def __init__(self, fig: Figure, vehicles: dict | None = None, columns: int = 2) -> None:
+        if isinstance(columns, bool) or not isinstance(columns, int) or columns < 1:
+            raise ValueError(f"columns must be a positive integer, got {columns!r}")
         self.vehicles = dict(VEHICLES if vehicles is None else vehicles)
         self.fig = fig
         n = len(self.vehicles)
+        rows = -(-n // columns)
         self.axes, self.items = [], []
         for k, (name, spec) in enumerate(self.vehicles.items()):
-            ax = fig.add_subplot(1, n, k + 1)
+            ax = fig.add_subplot(rows, columns, k + 1)
             reach = _reach(spec)
             lim = 1.5 * reach
             ax.set_xlim(-lim, lim)
@@ -96,7 +101,8 @@ class ConstraintView:
             self.items.append({"spec": spec, "wheels": wheels, "drawing": drawing,
                                "velocity": velocity, "slide": slide, "text": text,
                                "points": points, "scale": 0.8 * reach / 0.5})
-        fig.subplots_adjust(left=0.01, right=0.99, bottom=0.02, top=0.86, wspace=0.05)
+        fig.subplots_adjust(left=0.01, right=0.99, bottom=0.02, top=0.86, wspace=0.05,
+                            hspace=0.3)
 
     @property
     def artists(self) -> list:
@@ -159,7 +165,7 @@ def constraints_panel() -> Panel:
     }
 
     def setup():
-        fig = Figure(figsize=(10, 3.2))
+        fig = Figure(figsize=(6.7, 4.5), layout="none")  # fits the column and a 1366 x 768 screen
         return fig, ConstraintView(fig)
 
     def update(view, vx, vy, omega, steer):
@@ -190,14 +196,14 @@ def tour_twists(frames: int = 48) -> np.ndarray:
     return np.vstack([strafe, turn, spin])
 
 
-def twist_tour_animation(frames: int = 48, figsize=(10, 3.2), dpi: int = 72
+def twist_tour_animation(frames: int = 32, figsize=(6.7, 4.8), dpi: int = 100
                          ) -> SandboxAnimation:
     """The :class:`ConstraintView` while the twist tours :func:`tour_twists`, steered wheels
     steered; display with :func:`wheelkin.animation.show`."""
     twists = tour_twists(frames)
-    fig = Figure(figsize=figsize, dpi=dpi)
+    fig = Figure(figsize=figsize, dpi=dpi, layout="none")
     view = ConstraintView(fig)
-    fig.subplots_adjust(top=0.8)
+    fig.subplots_adjust(top=0.8, hspace=0.35)
     stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
 
     def update(f: int):
@@ -211,7 +217,7 @@ def twist_tour_animation(frames: int = 48, figsize=(10, 3.2), dpi: int = 72
                             repeat=True, colors=64, dynamic=[*view.artists, stamp])
 
 
-def manoeuvre_animation(runs: dict, frames: int = 30, figsize=(10, 3.4), dpi: int = 72
+def manoeuvre_animation(runs: dict, frames: int = 16, figsize=(6.7, 5.4), dpi: int = 100
                         ) -> SandboxAnimation:
     """Sandbox runs of several vehicles side by side, one manoeuvre after another.
 
@@ -231,10 +237,12 @@ def manoeuvre_animation(runs: dict, frames: int = 30, figsize=(10, 3.4), dpi: in
     if any(list(runs[t]) != names for t in titles):
         raise ValueError("runs must give the same vehicles, in the same order, for every "
                          "manoeuvre")
-    fig = Figure(figsize=figsize, dpi=dpi)
+    fig = Figure(figsize=figsize, dpi=dpi, layout="none")
     axes, drawings, goals, trails = [], [], [], []
+    columns = 2
+    rows = -(-len(names) // columns)
     for k, name in enumerate(names):
-        ax = fig.add_subplot(1, len(names), k + 1)
+        ax = fig.add_subplot(rows, columns, k + 1)
         spec = runs[titles[0]][name][0]
         reach = _reach(spec)
         span = [runs[t][name][1].pose[:, :2] for t in titles]
@@ -246,7 +254,7 @@ def manoeuvre_animation(runs: dict, frames: int = 30, figsize=(10, 3.4), dpi: in
         ax.set_ylim(centre[1] - half, centre[1] + half)
         ax.set_aspect("equal")
         ax.grid(True, color="#eeeeee", linewidth=0.6)
-        ax.tick_params(labelsize=7)
+        ax.tick_params(labelsize=8)
         ax.set_title(name, fontsize=10)
         goals.append(draw_vehicle(ax, spec, (0.0, 0.0, 0.0), color="#cccccc", alpha=0.35,
                                   zorder=1.5))
@@ -255,7 +263,8 @@ def manoeuvre_animation(runs: dict, frames: int = 30, figsize=(10, 3.4), dpi: in
         trails.append(line)
         axes.append(ax)
     stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
-    fig.subplots_adjust(left=0.05, right=0.99, bottom=0.08, top=0.86, wspace=0.25)
+    fig.subplots_adjust(left=0.08, right=0.99, bottom=0.05, top=0.86, wspace=0.25,
+                        hspace=0.3)
     n_total = frames * len(titles)
 
     def update(f: int):
@@ -270,8 +279,8 @@ def manoeuvre_animation(runs: dict, frames: int = 30, figsize=(10, 3.4), dpi: in
             goals[k].update(goal, traj.steering[-1])
             trails[k].set_data(traj.pose[: i + 1, 0], traj.pose[: i + 1, 1])
             t_now = float(traj.t[i])
-        stamp.set_text(f"{title}   t = {t_now:4.2f} s   (red wheel: slipping; grey: the pose "
-                       "asked for)")
+        stamp.set_text(f"{title}   t = {t_now:4.2f} s\n(red wheel: slipping; grey: the "
+                       "pose asked for)")
         return []
 
     update(0)

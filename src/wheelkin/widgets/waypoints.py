@@ -2,12 +2,12 @@
 
 A lap of the sandbox takes seconds (the skid steer slips in every turn, and each slipping step
 is a small optimisation), too slow to follow a slider. The panel therefore drives a *reduced*
-model of the lab robot, :class:`KinematicSkidSteer`: a differential drive whose yaw rate is
-the wheels' ideal one divided by the skid factor :math:`\\chi` (the sandbox's, measured in the
-chapter: :math:`\\chi = 1 + a^2/b^2` for a pure spin with Coulomb friction), with the same
-first-order motor lag and the same encoders (:class:`wheelkin.sandbox.sensors.Encoder`). It has
-the interface of a sandbox robot, so the very same :class:`wheelkin.waypoints.FollowerController`
-drives it. The chapter checks it against the sandbox's closed-loop lap.
+model of the lab robot, :class:`wheelkin.follower.KinematicSkidSteer` (re-exported here): a
+differential drive whose yaw rate is the wheels' ideal one divided by the skid factor
+:math:`\\chi` (the sandbox's, measured in the chapter: :math:`\\chi = 1 + a^2/b^2` for a pure
+spin with Coulomb friction), with the same first-order motor lag. It has the interface of a
+sandbox robot, so the very same :class:`wheelkin.follower.FollowerController` drives it. The
+chapter checks it against the sandbox's closed-loop lap.
 
 The panel ``waypoints.lab`` runs a closed-loop lap with sliders for the cruising speed, the
 look-ahead distance, the heading gain of the turns in place, the encoder resolution and the
@@ -25,13 +25,19 @@ import numpy as np
 from matplotlib.patches import Polygon
 
 from wheelkin import waypoints as wp
-from wheelkin.odometry import integrate
+from wheelkin.follower import FollowerController, KinematicSkidSteer, PathFollower
 from wheelkin.sandbox import LAB_ROBOT
-from wheelkin.sandbox.sensors import Encoder
 from wheelkin.widgets import Panel, register
 from wheelkin.widgets._blit import BlitList
 
-__all__ = ["SKID_FACTOR", "KinematicSkidSteer", "LabView", "lab_panel", "surrogate_lap"]
+__all__ = [
+    "EFFECTIVE_TRACK",
+    "SKID_FACTOR",
+    "KinematicSkidSteer",
+    "LabView",
+    "lab_panel",
+    "surrogate_lap",
+]
 
 _A, _B = wp.LAB_HALF_WHEELBASE, wp.LAB_HALF_AXLE  # half wheelbase a, half axle b = d (m)
 #: Skid factor of the lab robot turning in place with Coulomb friction: 1 + a^2/b^2.
@@ -45,149 +51,6 @@ ENCODER_CHOICES = (("ideal", 0), ("4096 / rev", 4096), ("256 / rev", 256), ("64 
                    ("16 / rev", 16))
 TRACK_CHOICES = (("effective, 0.203 m (calibrated)", EFFECTIVE_TRACK),
                  ("geometric, 0.12 m (the lab's)", 2 * _B))
-
-
-class KinematicSkidSteer:
-    """A reduced model of the lab robot with a sandbox robot's interface.
-
-    Each :meth:`step` of ``h`` seconds: the wheel rates approach their commands with the first
-    order lag :math:`\\tau` (exactly, over the step); with the step's mean rates
-    :math:`\\bar\\varphi_{L,R}`, the body moves on the arc of constant twist
-    :math:`v = r_w(\\bar\\varphi_L + \\bar\\varphi_R)/2`,
-    :math:`\\omega = r_w(\\bar\\varphi_R - \\bar\\varphi_L)/(2b\\chi)`.
-
-    Parameters
-    ----------
-    pose : (x, y, theta)
-    skid_factor : float
-        :math:`\\chi` >= 1 (1: an ideal differential drive).
-    steps_per_rev : int or None
-        Encoder counts per wheel revolution; None for ideal encoders.
-    motor_time_constant : float
-        :math:`\\tau` (s), >= 0.
-
-    Examples
-    --------
-    >>> robot = KinematicSkidSteer((0.0, 0.0, 0.0), skid_factor=2.0, motor_time_constant=0.0)
-    >>> robot.set_side_rates(-5.0, 5.0)
-    >>> for _ in range(100):
-    ...     robot.step(0.01)
-    >>> round(robot.pose[2], 6)  # ideal: 0.04 * 10 / 0.12 = 3.333 rad/s for 1 s; halved
-    1.666667
-    """
-
-    spec = LAB_ROBOT
-
-    def __init__(self, pose, *, skid_factor: float = SKID_FACTOR,
-                 steps_per_rev: int | None = None,
-                 motor_time_constant: float = MOTOR_TIME_CONSTANT) -> None:
-        self.start = tuple(float(a) for a in pose)
-        self.skid_factor = float(skid_factor)
-        self.tau = float(motor_time_constant)
-        self.encoder = Encoder(4, steps_per_rev or None)
-        self._cmd = np.zeros(4)
-        self._rates = np.zeros(4)
-        self._angles = np.zeros(4)
-        self._travel: list[tuple[float, float]] = []  # (left, right) rim travel per step, m
-        self.steps = 0
-
-    def set_side_rates(self, left: float, right: float) -> None:
-        """Left wheels (FL, RL) at ``left``, right wheels (FR, RR) at ``right``, rad/s."""
-        self._cmd = np.array([left, right, left, right], dtype=float)
-
-    @property
-    def encoder_angles(self) -> np.ndarray:
-        """The encoders' readings as wheel angles (rad), FL, FR, RL, RR."""
-        return self.encoder.angles(self.encoder.counts(self._angles, self.steps))
-
-    def step(self, h: float) -> None:
-        """Advance ``h`` seconds."""
-        if self.tau > 0:
-            decay = math.exp(-h / self.tau)
-            mean = self._cmd + (self._rates - self._cmd) * self.tau * (1 - decay) / h
-            self._rates = self._cmd + (self._rates - self._cmd) * decay
-        else:
-            mean = self._rates = self._cmd.copy()
-        r = wp.LAB_WHEEL_RADIUS
-        self._travel.append((r * (mean[0] + mean[2]) / 2 * h, r * (mean[1] + mean[3]) / 2 * h))
-        self._angles = self._angles + mean * h
-        self.steps += 1
-
-    def path(self) -> np.ndarray:
-        """Poses (steps + 1, 3) after each step, from the start: exact arcs of the mean twist
-        of each step, the track widened by the skid factor (:func:`wheelkin.odometry.integrate`
-        in mm)."""
-        return _path(self.start, self._travel, self.skid_factor)
-
-    @property
-    def pose(self) -> tuple[float, float, float]:
-        """The pose now (x, y, theta)."""
-        return tuple(float(a) for a in self.path()[-1])
-
-
-def _path(start, travel, skid_factor: float) -> np.ndarray:
-    """Poses (len(travel) + 1, 3) from ``start`` after each step's (left, right) travel (m)."""
-    x0, y0, th0 = start
-    if not travel:
-        return np.array([start])
-    poses = integrate(np.asarray(travel) * 1000.0, 1.0, 2 * _B * skid_factor * 1000.0,
-                      method="exact", pose=(x0 * 1000.0, y0 * 1000.0, th0))
-    poses = np.vstack([[x0 * 1000.0, y0 * 1000.0, th0], poses])
-    poses[:, :2] /= 1000.0
-    return poses
-
-
-def _drive_unchecked(robot: KinematicSkidSteer, ctrl: wp.FollowerController, h: float,
-                     substeps: int, max_time: float) -> None:
-    """The closed loop of :func:`surrogate_lap`, fast: ``robot`` driven by ``ctrl``.
-
-    The same arithmetic as calling ``ctrl(t)`` and ``robot.step(h)`` in turn, in the same
-    order, to the last bit (the tests compare whole laps), on Python floats instead of
-    arrays of four wheels and without the validation of the public functions (the
-    constructors have checked everything). The left wheels (FL, RL) get the same commands
-    from the same rest, so they turn alike, as do the right ones (FR, RR): one angle per side
-    is the mean of its two encoders. Leaves the robot and the controller as the slow loop
-    would.
-    """
-    r, tau = wp.LAB_WHEEL_RADIUS, robot.tau
-    decay = math.exp(-h / tau) if tau > 0 else 0.0
-    spr = robot.encoder.steps_per_rev
-    to_counts = spr / (2 * math.pi) if spr is not None else 0.0
-    to_angle = 2 * math.pi / spr if spr is not None else 0.0
-    if robot.steps or robot.encoder.noise or np.any(robot._cmd) or np.any(robot._rates):
-        raise ValueError("the fast loop starts from a fresh KinematicSkidSteer at rest")
-    cmd_l = cmd_r = rate_l = rate_r = angle_l = angle_r = 0.0
-    travel = robot._travel
-    tick = ctrl._tick_unchecked
-    steps = 0
-    for k in range(int(max_time / h)):
-        if (k % substeps == 0 and ctrl.finish_time is not None
-                and k * h > ctrl.finish_time + 1.0):
-            break
-        if spr is None:
-            read_l, read_r = angle_l, angle_r
-        else:  # Encoder.counts, then Encoder.angles
-            read_l = float(math.floor(angle_l * to_counts + 0.5)) * to_angle
-            read_r = float(math.floor(angle_r * to_counts + 0.5)) * to_angle
-        rates = tick(k * h + 0.5 * h, read_l, read_r)
-        if rates is not None:
-            cmd_l, cmd_r = rates
-        # KinematicSkidSteer.step
-        if tau > 0:
-            mean_l = cmd_l + (rate_l - cmd_l) * tau * (1 - decay) / h
-            mean_r = cmd_r + (rate_r - cmd_r) * tau * (1 - decay) / h
-            rate_l = cmd_l + (rate_l - cmd_l) * decay
-            rate_r = cmd_r + (rate_r - cmd_r) * decay
-        else:
-            mean_l, mean_r = rate_l, rate_r = cmd_l, cmd_r
-        travel.append((r * (mean_l + mean_l) / 2 * h, r * (mean_r + mean_r) / 2 * h))
-        angle_l = angle_l + mean_l * h
-        angle_r = angle_r + mean_r * h
-        steps += 1
-    robot._cmd = np.array([cmd_l, cmd_r, cmd_l, cmd_r])
-    robot._rates = np.array([rate_l, rate_r, rate_l, rate_r])
-    robot._angles = np.array([angle_l, angle_r, angle_l, angle_r])
-    robot.steps = steps
 
 
 def surrogate_lap(*, speed: float = 0.3, lookahead: float = 0.15, heading_gain: float = 4.0,
@@ -206,17 +69,23 @@ def surrogate_lap(*, speed: float = 0.3, lookahead: float = 0.15, heading_gain: 
     """
     segments = wp.plan_segments(wp.LAB_WAYPOINTS)
     robot = KinematicSkidSteer(segments[0].start, skid_factor=skid_factor,
-                               steps_per_rev=steps_per_rev)
-    follower = wp.PathFollower(segments, speed=speed, lookahead=lookahead,
-                               heading_gain=heading_gain)
-    ctrl = wp.FollowerController(robot, follower, wheel_radius=wp.LAB_WHEEL_RADIUS,
-                                 track_width=EFFECTIVE_TRACK,
-                                 odometry_track_width=odometry_track_width, period=PERIOD,
-                                 max_wheel_rate=MAX_WHEEL_RATE)
+                               steps_per_rev=steps_per_rev,
+                               motor_time_constant=MOTOR_TIME_CONSTANT)
+    follower = PathFollower(segments, speed=speed, lookahead=lookahead,
+                            heading_gain=heading_gain)
+    ctrl = FollowerController(robot, follower, wheel_radius=wp.LAB_WHEEL_RADIUS,
+                              track_width=EFFECTIVE_TRACK,
+                              odometry_track_width=odometry_track_width, period=PERIOD,
+                              max_wheel_rate=MAX_WHEEL_RATE)
     h = PERIOD / substeps
     if max_time is None:
         max_time = 2.0 * sum(s.length for s in segments) / speed + 30.0
-    _drive_unchecked(robot, ctrl, h, substeps, max_time)
+    for k in range(int(max_time / h)):  # the controller ticks every `substeps` steps
+        if (k % substeps == 0 and ctrl.finish_time is not None
+                and k * h > ctrl.finish_time + 1.0):
+            break
+        ctrl(k * h + 0.5 * h)
+        robot.step(h)
     truth = robot.path()[::substeps]
     estimate = np.array(ctrl.log_estimate)
     n = min(len(truth), len(estimate))
