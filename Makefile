@@ -22,9 +22,9 @@ PYTEST := $(BIN)/python -m pytest -p no:cacheprovider
 NB_ENV := PYTHONHASHSEED=0 MPLBACKEND=module://matplotlib_inline.backend_inline \
   SOURCE_DATE_EPOCH=1767225600 TZ=UTC LC_ALL=C.UTF-8 PYDEVD_DISABLE_FILE_VALIDATION=1
 
-LAYERS := lint unit nbval book browser
+LAYERS := lint unit nbval book browser kit pdf
 
-.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean lab
+.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean lab student grade tex
 
 help:
 	@echo "make book       build the HTML book into _build/html (set-up included)"
@@ -33,6 +33,9 @@ help:
 	@echo "make serve      build, then serve _build/html on http://127.0.0.1:$(PORT)"
 	@echo "make lab        JupyterLab (pinned, with jupyterlab-myst) in notebooks/ on 127.0.0.1:$(LAB_PORT)"
 	@echo "make bench      run every benchmark (benchmarks/run_all.py)"
+	@echo "make student    student edition: notebooks without solutions + web edition in _build/student"
+	@echo "make grade SUBMISSIONS=dir   grade submitted notebooks into _build/grades (grades.csv, results.json)"
+	@echo "make pdf        the printed edition, _build/pdf/wheelkin.pdf (make tex installs TeX, as root)"
 	@echo "make clean      remove build output and caches"
 
 $(STAMP): requirements.txt pyproject.toml
@@ -111,6 +114,39 @@ serve: book
 
 bench: book
 	$(BIN)/python benchmarks/run_all.py
+
+# The instructor's kit (tools/student_edition.py, tools/grade.py, tools/pdf_edition.py).
+student: vendor
+	$(BIN)/python tools/student_edition.py --out _build/student
+
+SUBMISSIONS ?=
+GRADE_TIMEOUT ?= 120
+grade: $(STAMP)
+	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>"; exit 2; }
+	$(BIN)/python tools/grade.py "$(SUBMISSIONS)" --out _build/grades --timeout $(GRADE_TIMEOUT)
+
+# The kit layer: the grader on tests/kit/submissions, the student edition built and executed,
+# stray globals before every exercise stub (tests/kit/conftest.py collects it only here).
+kit: vendor
+	$(PYTEST) tests/kit --ignore=tests/kit/test_pdf.py -o addopts="-ra" --timeout 3600
+
+# Debian's TeX for the PDF, installed when missing (needs root; CI runs as root).
+TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk xindy \
+  fonts-freefont-otf fonts-dejavu-core poppler-utils
+tex:
+	@if command -v xelatex >/dev/null && command -v latexmk >/dev/null \
+	   && command -v xindy >/dev/null && command -v pdftotext >/dev/null \
+	   && fc-list | grep -q FreeSerif && fc-list | grep -q "DejaVu Sans Mono"; then \
+	  echo "tex: TeX for the PDF is installed"; \
+	elif [ "$$(id -u)" = 0 ]; then \
+	  DEBIAN_FRONTEND=noninteractive apt-get update -q && \
+	  DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(TEX_PACKAGES) </dev/null; \
+	else echo "tex: run as root, or: sudo apt-get install $(TEX_PACKAGES)"; exit 1; fi
+
+# The printed edition, then its checks (the pdf layer of make test).
+pdf: tex $(STAMP)
+	$(BIN)/python tools/pdf_edition.py --out _build/pdf
+	$(PYTEST) tests/kit/test_pdf.py -o addopts="-ra"
 
 clean:
 	rm -rf _build _vendor .pytest_cache .ruff_cache .hypothesis

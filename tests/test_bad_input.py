@@ -374,6 +374,17 @@ def _good_call(qualname: str, fn, good: dict) -> dict:
     return kwargs
 
 
+def _optional(fn, kwargs: dict) -> dict:
+    """The optional parameters with a plain default (a number, a flag, a string), to be swept
+    too: their defaults are valid values."""
+    out = {}
+    for p in inspect.signature(fn).parameters.values():
+        if (p.name not in kwargs and p.default is not p.empty and p.name != "geometry"
+                and isinstance(p.default, bool | int | float | str)):
+            out[p.name] = p.default
+    return out
+
+
 #: Calls whose valid arguments differ from the shared table.
 OVERRIDES = {
     "rover.RoverGeometry": {"d1": 7.0, "d2": 10.0, "d3": 10.0, "d4": 10.0},
@@ -418,7 +429,7 @@ OVERRIDES = {
 def _resolve(qualname: str, kwargs: dict) -> dict:
     """Fill the overrides that need objects: a geometry of the right kind, a segment, ..."""
     from wheelkin import mecanum, odometry, rover, unified, waypoints
-    from wheelkin.follower import DrivenWheel, WheelLayout
+    from wheelkin.follower import DrivenWheel
 
     if qualname == "rover.wheel_commands":
         kwargs["geometry"] = rover.OSR_GEOMETRY_SI
@@ -448,13 +459,15 @@ def _calls():
                                marks=pytest.mark.xfail(reason=f"no valid value for {exc}",
                                                        strict=True))
             continue
-        for param in kwargs:
+        optional = _optional(fn, kwargs)
+        for param in [*kwargs, *optional]:
             for label in BAD_VALUES:
                 yield pytest.param(qualname, fn, kwargs, (param, label),
                                    id=f"{qualname}-{param}-{label}")
 
 
 CALLS = list(_calls())
+_GOOD_IS_INFINITE: dict = {}
 
 
 def test_every_public_callable_has_a_valid_call():
@@ -465,7 +478,7 @@ def test_every_public_callable_has_a_valid_call():
             kwargs = _resolve(qualname, _good_call(qualname, fn, good)
                               | OVERRIDES.get(qualname, {}))
             out = fn(**kwargs)
-        except Exception as exc:  # noqa: BLE001 - reported below
+        except Exception as exc:
             broken.append(f"{qualname}: {type(exc).__name__}: {exc}")
             continue
         assert _finite_leaves(out, allow_inf=True), qualname
@@ -476,12 +489,13 @@ def test_every_public_callable_has_a_valid_call():
 def test_bad_argument_gets_a_clean_error_or_a_finite_result(qualname, fn, kwargs, bad):
     param, label = bad
     value = BAD_VALUES[label]
-    good_value = kwargs[param]
+    good_value = kwargs.get(param, inspect.signature(fn).parameters[param].default)
     args = dict(kwargs) | {param: value}
     names = list(inspect.signature(fn).parameters)
     # an infinity the valid call returns too, or one passed in where the function documents
     # it (a straight line's radius) and hands it back, is not a leak; a NaN always is
-    infinite_anyway = not _finite_leaves(fn(**kwargs)) or label in ("+inf", "-inf")
+    infinite_anyway = _GOOD_IS_INFINITE.setdefault(
+        qualname, not _finite_leaves(fn(**kwargs))) or label in ("+inf", "-inf")
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         try:
@@ -498,3 +512,40 @@ def test_bad_argument_gets_a_clean_error_or_a_finite_result(qualname, fn, kwargs
         good_value, bool)
     if label == "True" and number_meant:
         pytest.fail(f"{qualname} accepted True as the number {param}")
+    if isinstance(good_value, bool) and label != "True":
+        pytest.fail(f"{qualname} accepted {label} as the flag {param} (a flag is True or "
+                    "False, not a truthy value)")
+
+
+# ----------------------------------------------------------------------------- named cases
+
+def test_the_cases_named_in_the_issue():
+    from wheelkin import rover, waypoints
+
+    segs = waypoints.plan_segments(waypoints.LAB_WAYPOINTS)
+    with pytest.raises(ValueError, match="wheel_rate"):  # was a ZeroDivisionError
+        waypoints.schedule(segs, 0.04, 0.06, wheel_rate=5e-324)
+    with pytest.raises(ValueError, match="speed_in_per_s"):  # blamed `speed` before
+        rover.body_twist(30.0, math.nan)
+    with pytest.raises(ValueError, match="track_width"):  # True is not 1.0 m
+        from wheelkin import diffdrive
+
+        diffdrive.wheel_speeds([0.1, 0.2], [0.0, 1.0], True)
+    with pytest.raises(ValueError, match="v"):  # nor is an array of booleans
+        diffdrive.wheel_speeds([True, False], 0.0, 0.3)
+    # near the 90 degree stop a corner on the ICR's line is at 90 degrees, with no warning
+    stop = math.nextafter(math.pi / 2, 0.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        angles = rover.corner_angles(rover.OSR_GEOMETRY.d1, max_corner_angle=stop)
+    assert np.all(np.isfinite(angles)) and abs(angles[1]) == pytest.approx(math.pi / 2)
+
+
+def test_flags_are_booleans_not_truthy_values():
+    from wheelkin import mecanum
+
+    with pytest.raises(ValueError, match="refuse"):
+        mecanum.limit_speed((1.0, 0.0, 0.0), 2.0, refuse=1)
+    with pytest.raises(ValueError, match="refuse"):
+        mecanum.limit_speed((1.0, 0.0, 0.0), 2.0, refuse="yes")
+    assert mecanum.limit_speed((3.0, 0.0, 0.0), 2.0, refuse=True).scale == 0.0

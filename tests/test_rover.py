@@ -491,7 +491,7 @@ def test_wheel_commands_straight_vectorised_and_bad_input():
         rv.wheel_commands(0.0, 1.0)  # on the spot: the corners would need 55 degrees
     with pytest.raises(ValueError, match="omega"):
         rv.wheel_commands(0.1, math.nan)
-    with pytest.raises(ValueError, match="^v "):
+    with pytest.raises(ValueError, match=r"^v "):
         rv.wheel_commands("fast", 0.1)
     with pytest.raises(ValueError, match="max_corner_angle"):
         rv.wheel_commands(0.1, 0.0, max_corner_angle=2.0)

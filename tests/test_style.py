@@ -153,3 +153,37 @@ def test_animation_frames_are_not_checked_when_checking_is_off(monkeypatch):
         style.setup()
         html = animation.to_html(_moving_text_animation(0.9), name="moving", alt="a label")
     assert "_anim_img" in html
+
+
+class _OwnWriterAnimation(FuncAnimation):
+    """An animation whose HTML writer has its own grab_frame (as the sandbox's does)."""
+
+    def to_jshtml(self, fps=None, embed_frames=True, default_mode=None):
+        import tempfile
+        from pathlib import Path
+
+        from matplotlib.animation import HTMLWriter
+
+        class OwnWriter(HTMLWriter):
+            def grab_frame(self, **savefig_kwargs):
+                self.fig.canvas.draw()
+                return super().grab_frame(**savefig_kwargs)
+
+        with tempfile.TemporaryDirectory() as tmp:
+            path = Path(tmp, "a.html")
+            self.save(str(path), writer=OwnWriter(fps=5, embed_frames=True,
+                                                  default_mode=default_mode or "loop"))
+            return path.read_text()
+
+
+def test_animation_with_its_own_writer_is_checked_too(monkeypatch):
+    with matplotlib.rc_context():
+        monkeypatch.setenv(style.CHECK_ENV, "1")
+        style.setup()
+        figure = plt.figure(figsize=(4, 3), dpi=100)
+        text = figure.text(0.1, 0.5, "moving label", fontsize=10)
+        anim = _OwnWriterAnimation(figure, lambda i: [text.set_x([0.1, 0.5, 0.9][i])], frames=3)
+        with pytest.raises(style.FigureCheckError, match="last frame: cut off"):
+            animation.to_html(anim, name="own", alt="a label moving right")
+        monkeypatch.setenv(style.CHECK_ENV, "0")
+        style.setup()

@@ -604,7 +604,10 @@ def _full_draw(setup, update, dpi=72, **values) -> np.ndarray:
     import matplotlib.pyplot as plt
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
-    fig, state = setup()
+    from wheelkin import style
+
+    with plt.ioff(), plt.rc_context(style._RC):  # as the panel builds its figure
+        fig, state = setup()
     plt.close(fig)
     FigureCanvasAgg(fig)
     fig.set_dpi(dpi)
@@ -625,7 +628,7 @@ def test_lab_panel_blits_the_picture_of_a_full_draw():
                        {"speed": 0.1, "lookahead": 0.5, "heading_gain": 1.0, "encoder": 0,
                         "track": ww.EFFECTIVE_TRACK}):
             panel.redraw(**values)
-            full = _full_draw(ww._setup, ww._update, **panel.values())
+            full = _full_draw(ww._setup, ww._update, dpi=panel.dpi, **panel.values())
             assert (full != 255).any()
             np.testing.assert_array_equal(_png_pixels(panel), full)
     finally:
@@ -669,7 +672,7 @@ def test_lab_view_redraws_the_legend_only_over_a_path_that_runs_under_it():
         for k in (0, 1, 0, 2, 2, 1, 1, 0, *range(3, len(paths)), 0, *range(3, len(paths))):
             panel.redraw(k=k)
             seen.add(any(a is legend for a in panel._blit))
-            np.testing.assert_array_equal(_png_pixels(panel), _full_draw(ww._setup, update, k=k),
+            np.testing.assert_array_equal(_png_pixels(panel), _full_draw(ww._setup, update, dpi=panel.dpi, k=k),
                                           err_msg=f"path {k}")
         assert seen == {True, False}  # both cases met
     finally:

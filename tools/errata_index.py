@@ -20,7 +20,7 @@ from pathlib import Path
 import nbformat
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from book_pages import ROOT, toc_notebooks  # noqa: E402
+from book_pages import ROOT, toc_notebooks
 
 ERRATA_DIR = ROOT / "book" / "errata"
 LABEL = re.compile(r"^\((erratum-([a-z]+)-[\w-]+)\)=\s*$", re.MULTILINE)

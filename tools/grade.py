@@ -109,16 +109,28 @@ def find_exercises(nb) -> dict[str, str]:
     return found
 
 
-def _perturb(value, factor):
-    """``value`` with every float (also inside tuples, lists, float arrays) times ``factor()``."""
-    if isinstance(value, bool) or isinstance(value, (int, np.integer)):
+def _hulls(cases: list[Case]) -> dict:
+    """Per argument (position or keyword): the (min, max) of its float values over ``cases``."""
+    hulls: dict = {}
+    for case in cases:
+        for key, value in [*enumerate(case.args), *case.kwargs.items()]:
+            if isinstance(value, bool) or not isinstance(value, (float, np.floating)):
+                continue
+            if math.isfinite(value):
+                lo, hi = hulls.get(key, (value, value))
+                hulls[key] = (min(lo, value), max(hi, value))
+    return hulls
+
+
+def _perturb(value, factor: float, hull):
+    """``value`` times ``factor`` (or divided by it) if that stays inside ``hull``, the range
+    the visible cases span; else unchanged. Only finite floats change."""
+    if (hull is None or isinstance(value, bool)
+            or not isinstance(value, (float, np.floating)) or not math.isfinite(value)):
         return value
-    if isinstance(value, (float, np.floating)):
-        return type(value)(value * factor()) if math.isfinite(value) else value
-    if isinstance(value, np.ndarray) and np.issubdtype(value.dtype, np.floating):
-        return value * np.array([factor() for _ in range(value.size)]).reshape(value.shape)
-    if isinstance(value, (tuple, list)):
-        return type(value)(_perturb(v, factor) for v in value)
+    for new in (value * factor, value / factor):
+        if hull[0] <= new <= hull[1]:
+            return type(value)(new)
     return value
 
 
@@ -130,24 +142,30 @@ def _expected(exercise: Exercise, case: Case):
 
 
 def hidden_cases(exercise: Exercise, per_case: int = HIDDEN_PER_CASE) -> list[Case]:
-    """Cases the student never sees: each visible input scaled by 1.37, and perturbed by up to
-    ±20 % per number, deterministically (seeded by the exercise's name). A case whose reference
-    answer is not defined (raises, NaN, or infinite where the visible one is finite) is dropped.
+    """Cases the student never sees: each visible input with its numbers changed by up to
+    ±25 %, deterministically (seeded by the exercise's name), each number kept inside the
+    range that the visible cases span (so that a hidden case stays in the regime the exercise
+    asks about: a turn stays a turn, a limit is not crossed). Integers, strings and infinite
+    values are not changed. A case whose reference answer is not defined (raises, NaN) is
+    dropped.
     """
     rng = np.random.default_rng(zlib.crc32(exercise.name.encode()))
+    hulls = _hulls(exercise.cases)
     out: list[Case] = []
+    seen = {repr(c) for c in exercise.cases}
     for case in exercise.cases:
         try:
             base = _expected(exercise, case)
         except Exception:  # pragma: no cover - a visible case the reference rejects
             continue
-        makers = [lambda: 1.37] + [lambda: 1.0 + rng.uniform(-0.2, 0.2)] * (per_case - 1)
-        for make in makers[:per_case]:
-            args = _perturb(case.args, make)
-            kwargs = {k: _perturb(v, make) for k, v in case.kwargs.items()}
-            new = Case(tuple(args), kwargs)
-            if repr(new) == repr(case):
-                continue  # nothing to perturb (no float input)
+        for _ in range(per_case):
+            args = tuple(_perturb(v, 1.0 + rng.uniform(0.05, 0.25), hulls.get(i))
+                         for i, v in enumerate(case.args))
+            kwargs = {k: _perturb(v, 1.0 + rng.uniform(0.05, 0.25), hulls.get(k))
+                      for k, v in case.kwargs.items()}
+            new = Case(args, kwargs)
+            if repr(new) in seen:
+                continue  # nothing could change
             try:
                 want = _expected(exercise, new)
             except Exception:
@@ -156,6 +174,7 @@ def hidden_cases(exercise: Exercise, per_case: int = HIDDEN_PER_CASE) -> list[Ca
                 continue
             if np.any(~np.isfinite(want) & np.isfinite(base)):
                 continue
+            seen.add(repr(new))
             out.append(new)
     return out
 

@@ -21,6 +21,12 @@ Loaded by ``_config.yml`` (``sphinx.local_extensions``). Four jobs:
    the build (only when that stylesheet does carry the icon classes; otherwise the build warns
    and keeps the script). The ipywidgets scripts (``require.js``, ``embed-amd.js``) are added
    by myst-nb only to pages that store widget state, and the book stores none.
+5. MathJax in parts: the combined ``tex-chtml.js`` (1.16 MB) bundles MathJax's context menu
+   (``ui/menu``, 0.43 MB). Where the pinned MathJax package is installed (``node_modules/``,
+   as ``make book`` leaves it) the pages load ``startup.js`` and its loader fetches only
+   the TeX input, the CommonHTML output with its font data, and the assistive MathML that
+   screen readers read (0.76 MB in all); the component files are copied into the build. The
+   formulas look and read the same; the right-click menu (zoom, "show math as") is gone.
 """
 
 from __future__ import annotations
@@ -119,8 +125,52 @@ def _light_first_visit(app, exception) -> None:
     drop_fontawesome_script(outdir)
 
 
+#: MathJax 3 components loaded instead of the combined tex-chtml.js (no ui/menu), as
+#: (file under node_modules/mathjax/es5, file under _static/mathjax).
+MATHJAX_PARTS: tuple[tuple[str, str], ...] = (
+    ("startup.js", "startup.js"),
+    ("core.js", "core.js"),
+    ("input/tex.js", "input/tex.js"),
+    ("output/chtml.js", "output/chtml.js"),
+    ("output/chtml/fonts/tex.js", "output/chtml/fonts/tex.js"),
+    ("a11y/assistive-mml.js", "a11y/assistive-mml.js"),
+)
+MATHJAX_ES5 = Path(__file__).resolve().parents[1] / "node_modules" / "mathjax" / "es5"
+#: What config-inited decided, for build-finished (one build per process).
+_STATE: dict[str, bool] = {}
+
+
+def _mathjax_in_parts(app, config) -> None:
+    vendor = Path(app.srcdir) / VENDOR_DIRNAME
+    if not vendor_complete(vendor) or not all((MATHJAX_ES5 / src).is_file()
+                                              for src, _ in MATHJAX_PARTS):
+        return  # the combined file (vendored) or the CDN's
+    config.mathjax_path = "mathjax/startup.js"
+    settings = dict(config.mathjax3_config or {})
+    loader = dict(settings.get("loader", {}))
+    loader["load"] = ["input/tex", "output/chtml", "a11y/assistive-mml"]
+    settings["loader"] = loader
+    config.mathjax3_config = settings
+    _STATE["mathjax_parts"] = True
+
+
+def _copy_mathjax_parts(app, exception) -> None:
+    if exception is not None or app.builder.format != "html":
+        return
+    if not _STATE.get("mathjax_parts"):
+        return
+    import shutil
+
+    target = Path(app.outdir) / "_static" / "mathjax"
+    for src, dest in MATHJAX_PARTS:
+        (target / dest).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(MATHJAX_ES5 / src, target / dest)
+
+
 def setup(app):
     app.connect("build-finished", _light_first_visit)
+    app.connect("build-finished", _copy_mathjax_parts)
+    app.connect("config-inited", _mathjax_in_parts, priority=101)
     app.connect("config-inited", _use_vendored_or_cdn, priority=100)
     app.connect("doctree-resolved", _strip_player_stylesheet)
     app.connect("html-page-context", _drop_duplicate_scripts, priority=900)

@@ -37,11 +37,13 @@ _ICONS = {
 _FRAME = re.compile(r'(frames\[\d+\] = "data:image/png;base64,)((?:[A-Za-z0-9+/=]|\\\n)+)(")')
 
 
-def _palette_frame(match: re.Match, colors: int, min_font_pt: float | None = None) -> str:
+def _palette_frame(match: re.Match, colors: int, min_font_pt: float | None = None,
+                   dpi: float | None = None) -> str:
     """One embedded PNG frame, re-encoded with an adaptive palette of ``colors`` colours.
 
-    The frame keeps its dpi (the PNG's pHYs chunk) and, when given, records the smallest font
-    size drawn in it (a ``wheelkin:min_font_pt`` text chunk), as every figure of the book does.
+    The frame keeps its dpi (the PNG's pHYs chunk; ``dpi``, the figure's, when the frame has
+    none) and, when given, records the smallest font size drawn in it (a
+    ``wheelkin:min_font_pt`` text chunk), as every figure of the book does.
     """
     import base64
     import io
@@ -53,7 +55,7 @@ def _palette_frame(match: re.Match, colors: int, min_font_pt: float | None = Non
         raise ValueError(f"colors must be in [2, 256], got {colors}")
     data = base64.b64decode(match.group(2).replace("\\\n", ""))
     image = Image.open(io.BytesIO(data)).convert("RGB")
-    dpi = Image.open(io.BytesIO(data)).info.get("dpi")
+    dpi = Image.open(io.BytesIO(data)).info.get("dpi") or ((dpi, dpi) if dpi else None)
     quantised = image.quantize(colors=colors, method=Image.Quantize.MEDIANCUT, dither=0)
     info = PngInfo()
     if min_font_pt is not None:
@@ -121,6 +123,7 @@ def to_html(
     try:
         raw = _jshtml_checked(anim, name, fps=fps, default_mode=default_mode)
         smallest = style.min_font_pt(anim._fig)
+        fig_dpi = anim._fig.dpi
     finally:
         plt.close(anim._fig)
     match = _UUID.search(raw)
@@ -133,7 +136,7 @@ def to_html(
     for icon, text in _ICONS.items():
         out = out.replace(f'<i class="fa {icon}"></i>', f'<span aria-hidden="true">{text}</span>')
     if colors is not None:
-        out = _FRAME.sub(lambda m: _palette_frame(m, int(colors), smallest), out)
+        out = _FRAME.sub(lambda m: _palette_frame(m, int(colors), smallest, fig_dpi), out)
     out = out.replace(
         f'<img id="_anim_img{new_id}">',
         f'<img id="_anim_img{new_id}" alt="{_html.escape(alt, quote=True)}">',
@@ -154,29 +157,39 @@ def to_html(
 
 def _jshtml_checked(anim: Animation, name: str, **kwargs) -> str:
     """``anim.to_jshtml(**kwargs)``; with the figure check on (:func:`wheelkin.style.checking`),
-    the first and the last frame are checked as they are drawn, and a problem raises
-    :class:`wheelkin.style.FigureCheckError` naming the animation and the frame."""
-    from matplotlib.animation import HTMLWriter
+    the first and the last frame are checked as they are written, and a problem raises
+    :class:`wheelkin.style.FigureCheckError` naming the animation and the frame.
 
+    The check wraps the ``grab_frame`` of whichever writer ``anim.save`` is given (matplotlib's
+    ``HTMLWriter`` or a subclass with its own ``grab_frame``, like the sandbox's), for this
+    animation only.
+    """
     from wheelkin import style
 
     if not style.checking():
         return anim.to_jshtml(embed_frames=True, **kwargs)
     found: dict[str, list[str]] = {}
-    original = HTMLWriter.grab_frame
+    save = anim.save
 
-    def grab_frame(writer, **savefig_kwargs):
-        out = original(writer, **savefig_kwargs)
-        # The frame was just drawn (saved): measure its texts without drawing it again.
-        found["first" if "first" not in found else "last"] = style.check_figure(
-            writer.fig, draw=False)
-        return out
+    def checked_save(*args, writer=None, **save_kwargs):
+        if writer is not None and not isinstance(writer, str):
+            grab = writer.grab_frame
 
-    HTMLWriter.grab_frame = grab_frame  # only while this animation is written
+            def grab_frame(**savefig_kwargs):
+                out = grab(**savefig_kwargs)
+                # The frame was just drawn: measure its texts without drawing it again.
+                found["first" if "first" not in found else "last"] = style.check_figure(
+                    writer.fig, draw=False)
+                return out
+
+            writer.grab_frame = grab_frame
+        return save(*args, writer=writer, **save_kwargs)
+
+    anim.save = checked_save  # this animation only
     try:
         raw = anim.to_jshtml(embed_frames=True, **kwargs)
     finally:
-        HTMLWriter.grab_frame = original
+        del anim.save
     problems = [f"{frame} frame: {p}" for frame in ("first", "last") for p in found.get(frame, [])]
     if problems:
         raise style.FigureCheckError(f"animation {name!r}: " + "; ".join(problems))

@@ -55,8 +55,8 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from wheelkin import _validate as _v
 from wheelkin import _kernels
+from wheelkin import _validate as _v
 from wheelkin._kernels import c_div, diff_drive_wheel_speeds
 from wheelkin.units import RADON_ULZER_STEPS_PER_M
 
@@ -500,7 +500,8 @@ def wrap_int(values, bits: int = 32):
     >>> wrap_int(2 * 1000 * 1000, bits=16)
     -31616
     """
-    if bits not in (8, 16, 32, 64):
+    if isinstance(bits, bool) or not isinstance(bits, int | np.integer) or bits not in (8, 16,
+                                                                                     32, 64):
         raise ValueError(f"bits must be one of 8, 16, 32, 64; got {bits!r}")
     arr = _integers("values", values, None)
     m = 1 << bits
@@ -882,6 +883,8 @@ def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None, *
     if t.size > 1 and np.any(np.diff(t) <= 0):
         raise ValueError("times must be strictly increasing")
     win = _v.nonnegative("window", window)
+    if not isinstance(return_updates, bool):
+        raise ValueError(f"return_updates must be True or False, got {return_updates!r}")
     if isinstance(min_steps, bool) or not float(_v.nonnegative("min_steps", min_steps)
                                                 ).is_integer():
         raise ValueError(f"min_steps must be a whole number >= 0, got {min_steps!r}")

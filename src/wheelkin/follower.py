@@ -584,7 +584,10 @@ class KinematicSkidSteer:
         self.track_width = v.positive("track_width", track_width)
         self.wheelbase = v.positive("wheelbase", wheelbase)
         if skid_factor is None:
-            skid_factor = 1.0 + (self.wheelbase / self.track_width) ** 2
+            with np.errstate(all="ignore"):
+                ratio = np.float64(self.wheelbase) / self.track_width
+                skid_factor = float(v.finite_result("wheelbase and track_width",
+                                                    1.0 + ratio * ratio))
         self.skid_factor = v.finite("skid_factor", skid_factor)
         if self.skid_factor < 1.0:
             raise ValueError(f"skid_factor must be a finite number >= 1, got {skid_factor!r}")

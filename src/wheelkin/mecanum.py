@@ -56,8 +56,8 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from wheelkin import _validate as v
 from wheelkin import _kernels
+from wheelkin import _validate as v
 from wheelkin._kernels import arc_factors, shift_twist
 from wheelkin.frames import Pose, Twist, wrap_angle
 from wheelkin.units import FOOT
@@ -447,7 +447,9 @@ def grip_usage(accel_x, accel_y, mu, roller_angle=math.pi / 4, gravity=9.81) -> 
     if not 0.0 < gamma < math.pi / 2:
         raise ValueError(f"roller_angle must be in (0, pi/2) rad (exclusive), got {roller_angle!r}")
     g = v.positive("gravity", gravity)
-    return (np.abs(ax_a) / math.sin(gamma) + np.abs(ay_a) / math.cos(gamma)) / (mu_f * g)
+    with np.errstate(all="ignore"):
+        out = (np.abs(ax_a) / math.sin(gamma) + np.abs(ay_a) / math.cos(gamma)) / (mu_f * g)
+    return v.finite_result("accel_x, accel_y, mu and roller_angle", out)
 
 
 class SpeedLimit(NamedTuple):

@@ -80,8 +80,8 @@ __all__ = [
     "outer_middle_is_fastest_above",
     "radius_to_command",
     "sandbox_commands",
-    "wheel_distances",
     "wheel_commands",
+    "wheel_distances",
     "wheel_positions",
     "wheel_speeds",
 ]
@@ -201,7 +201,9 @@ def min_turning_radius(geometry: RoverGeometry = OSR_GEOMETRY,
     g = _geometry(geometry)
     angle = _validate.in_range("max_corner_angle", max_corner_angle, 0.0, math.pi / 2,
                                inclusive=False)
-    return g.d1 + max(g.d2, g.d3) / math.tan(angle)
+    with np.errstate(all="ignore"):
+        out = g.d1 + max(g.d2, g.d3) / np.tan(angle)
+    return float(_validate.finite_result("max_corner_angle", out))
 
 
 def outer_middle_is_fastest_above(geometry: RoverGeometry = OSR_GEOMETRY) -> float:
@@ -400,7 +402,8 @@ def corner_angles(radius, geometry: RoverGeometry = OSR_GEOMETRY,
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0e9, r)[..., None]
     pos = wheel_positions(g)[list(_CORNER_WHEELS)]
-    angles = np.arctan(pos[:, 0] / (rr + pos[:, 1]))
+    with np.errstate(divide="ignore"):  # a corner on the ICR's line: x/0 = inf, 90 degrees
+        angles = np.arctan(pos[:, 0] / (rr + pos[:, 1]))
     return np.where(straight[..., None], 0.0, angles)
 
 

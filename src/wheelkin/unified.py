@@ -805,9 +805,9 @@ def rover_wheels(geometry=None, wheel_radius: float = 0.06,
     r"""The six-wheel rover of :class:`wheelkin.rover.RoverGeometry`, in metres and our sign.
 
     Wheels LF, LM, LB, RF, RM, RB at the document's positions
-    (:func:`wheelkin.rover.wheel_positions`, inches, times 0.0254); the middle wheels fixed, the corners steered to
-    the document's turn of radius ``radius_in`` (:func:`wheelkin.rover.corner_angles`, whose
-    positive angle turns the wheel clockwise, so :math:`\delta_i = -\delta_i^{doc}`).
+    (:func:`wheelkin.rover.wheel_positions`, inches, times 0.0254); the middle wheels fixed,
+    the corners steered to the document's turn of radius ``radius_in``
+    (:func:`wheelkin.rover.corner_angles`, whose positive angle turns the wheel clockwise, so :math:`\delta_i = -\delta_i^{doc}`).
 
     Parameters
     ----------
@@ -829,7 +829,12 @@ def rover_wheels(geometry=None, wheel_radius: float = 0.06,
     if not isinstance(g, rover.RoverGeometry):
         raise ValueError(f"geometry must be a RoverGeometry, got {type(g).__name__}")
     r = v.positive("wheel_radius", wheel_radius)
-    corners = dict(zip(rover.CORNER_NAMES, -np.asarray(rover.corner_angles(radius_in, g)),
+    turn = v.finite_array("radius_in", radius_in, allow_inf=True)
+    if turn.ndim != 0 or abs(float(turn)) < rover.min_turning_radius(g) * (1 - 1e-12):
+        raise ValueError(f"radius_in must be one number with |radius_in| >= "
+                         f"{rover.min_turning_radius(g):.6g} in (the corner stops), or +-inf; "
+                         f"got {radius_in!r}")
+    corners = dict(zip(rover.CORNER_NAMES, -np.asarray(rover.corner_angles(float(turn), g)),
                        strict=True))
     positions = rover.wheel_positions(g) * INCH
     return tuple(
@@ -860,6 +865,8 @@ def car_wheels(wheelbase: float, track_width: float, wheel_radius: float,
     L = v.positive("wheelbase", wheelbase)
     W = v.positive("track_width", track_width)
     r = v.positive("wheel_radius", wheel_radius)
+    if v.finite_array("radius", radius, allow_inf=True).ndim != 0:
+        raise ValueError(f"radius must be one number (inf: straight), got {radius!r}")
     left, right = carlike.ackermann_angles(radius, L, W)
     return (WheelConstraint("FL", (L, W / 2), 0.0, r, "steered", steering=float(left)),
             WheelConstraint("FR", (L, -W / 2), 0.0, r, "steered", steering=float(right)),

@@ -10,7 +10,9 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 from book_pages import NON_CHAPTER_NOTEBOOKS, toc_files  # noqa: E402, F401
 
-SITE = ROOT / "_build" / "html"
+#: The built book: _build/html, or the folder named by WHEELKIN_SITE (a build of one's own,
+#: e.g. `jupyter-book build . --path-output /tmp/x` then WHEELKIN_SITE=/tmp/x/_build/html).
+SITE = Path(os.environ.get("WHEELKIN_SITE") or ROOT / "_build" / "html")
 SCREENSHOTS = ROOT / "_build" / "screenshots"
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = [

@@ -12,9 +12,11 @@ visit (the page and every asset it loads) costs at most 3 MB. Needs ``make book`
 from __future__ import annotations
 
 import re
+from pathlib import Path
 from urllib.parse import unquote, urldefrag
 
 import pytest
+from book_pages import chapter_of
 from book_site import NON_CHAPTER_NOTEBOOKS, PAGES, ROOT, SITE
 from png_text import image_bytes, text_px
 
@@ -108,7 +110,7 @@ def test_screenshot_taken(visit, page):
 def test_the_book_has_animations_once_chapters_exist(visit):
     """Every chapter shows a precomputed animation, so a book with chapters has some."""
     chapters = [p for p in PAGES if p.startswith("notebooks/")
-                and p.split("/")[-1] not in NON_CHAPTER_NOTEBOOKS
+                and chapter_of(Path(p)) not in NON_CHAPTER_NOTEBOOKS
                 and (ROOT / f"{p}.ipynb").is_file()]
     if not chapters:
         pytest.skip("no chapter notebook is in _toc.yml yet")

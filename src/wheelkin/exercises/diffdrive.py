@@ -8,6 +8,8 @@ False
 
 from __future__ import annotations
 
+import math
+
 from wheelkin import diffdrive as dd
 from wheelkin.exercises import Case, Exercise
 
@@ -40,8 +42,8 @@ Exercise(
 )
 
 
-def wheel_speeds_steps(v_steps_per_s, omega_mrad_per_s, wheel_base_mm, steps_per_m):
-    return dd.wheel_speeds_steps(v_steps_per_s, omega_mrad_per_s, wheel_base_mm, steps_per_m)
+def wheel_speeds_steps(v_steps_per_s, omega_mrad_per_s, track_mm, steps_per_m):
+    return dd.wheel_speeds_steps(v_steps_per_s, omega_mrad_per_s, track_mm, steps_per_m)
 
 
 def _turn(omega, base, enc, factor):
@@ -51,7 +53,7 @@ def _turn(omega, base, enc, factor):
 Exercise(
     "diffdrive.wheel_speeds_steps",
     "Left and right wheel speeds (steps/s) from v (steps/s) and omega (mrad/s), with the "
-    "wheel base in mm and the encoder's steps per metre.",
+    "track width W in mm and the encoder's steps per metre.",
     wheel_speeds_steps,
     [Case((1000, 1000, 85, 8043)), Case((0, -2500, 85, 8043)), Case((-400, 300, 120, 5000))],
     wheel_names=_WHEELS,
@@ -69,13 +71,13 @@ Exercise(
 )
 
 
-def omega_limit(wheel_base_mm, steps_per_m):
-    return dd.int32_omega_limit(wheel_base_mm, steps_per_m)
+def omega_limit(track_mm, steps_per_m):
+    return dd.int32_omega_limit(track_mm, steps_per_m)
 
 
 Exercise(
     "diffdrive.omega_limit",
-    "The largest whole yaw rate |omega| (mrad/s) for which omega * wheel_base_mm * "
+    "The largest whole yaw rate |omega| (mrad/s) for which omega * track_mm * "
     "steps_per_m still fits in a signed 32-bit integer.",
     omega_limit,
     [Case((85, 8043)), Case((150, 4000)), Case((100, 20000)), Case((60, 1000))],
@@ -116,3 +118,36 @@ Exercise(
     ],
 )
 
+
+
+# ------------------------------------------------------------------ a design: the step count
+
+def choose_min_steps(min_speed, max_latency, max_error, steps_per_m):
+    """The smallest whole minimum step count m whose error, about 1/m, is at most
+    ``max_error``, if waiting for m steps at ``min_speed`` (m/s) takes at most ``max_latency``
+    (s); 0 if no m meets both (the chapter's speedometer section)."""
+    steps = math.ceil(1.0 / max_error - 1e-9)
+    wait = steps / (steps_per_m * abs(min_speed))
+    return steps if wait <= max_latency else 0
+
+
+Exercise(
+    "diffdrive.choose_min_steps",
+    "The smallest minimum step count m (error about 1/m <= max_error) for a speedometer "
+    "that must read min_speed (m/s) within max_latency (s); 0 if none meets both.",
+    choose_min_steps,
+    [Case((0.05, 0.1, 0.2, 8043)), Case((0.01, 0.1, 0.1, 8043)), Case((0.02, 0.2, 0.1, 8043)),
+     Case((0.1, 0.05, 0.05, 8043)), Case((-0.05, 0.1, 0.25, 8043))],
+    mistakes=[
+        (lambda v, lat, err, enc: math.ceil(1.0 / err - 1e-9),
+         "that step count meets the error, but the wait at the slowest speed, "
+         "m / (ENC |v|), is longer than max_latency: then no m works, return 0."),
+        (lambda v, lat, err, enc: math.floor(lat * enc * abs(v)),
+         "that is the largest m the latency allows; the smallest m that meets the error is "
+         "wanted (fewer steps, fresher readings), or 0 if even that one is too slow."),
+        (lambda v, lat, err, enc: (math.ceil(1.0 / err - 1e-9)
+                                   if math.ceil(1.0 / err - 1e-9) / (enc * v) <= lat else 0),
+         "a wheel running backwards has a negative speed: use |v| for the wait."),
+    ],
+    atol=1e-9,
+)

@@ -320,7 +320,7 @@ Exercise(
     "`delta_m` and the degree of steerability `delta_s` with the fewest motors, or -1 if no "
     "candidate gives them.",
     choose_design,
-    [Case((3, 0)), Case((1, 1)), Case((2, 0)), Case((1, 2)), Case((2, 1))],
+    [Case((1, 1)), Case((3, 0)), Case((2, 0)), Case((1, 2)), Case((2, 1))],
     mistakes=[
         (_first_fit,
          "that design has the right degrees, but another has them with fewer motors: the "

@@ -103,9 +103,7 @@ class SteeringView:
                                            zorder=2)[0]
         self.wheel_len = wheel_len
         self.icr = ax.plot([], [], marker="o", color="k", ms=5, ls="none", zorder=5)[0]
-        self.icr_text = ax.text(0.03, 0.03, "", transform=ax.transAxes, va="bottom",
-                                fontsize=9, zorder=6,
-                                bbox={"fc": "white", "ec": "none", "alpha": 0.8, "pad": 1})
+        self.centre = ""  # the turning centre, said in the title (over the view it hides a wheel)
         n = len(self.steered)
         self.bars = bx.barh(np.arange(n), np.zeros(n), height=0.6, color=_STEERED)
         bx.set_yticks(np.arange(n), self.steered, fontsize=9)
@@ -157,15 +155,15 @@ class SteeringView:
             errors.append(math.degrees(a - ideal))
         if math.isinf(radius):
             self.icr.set_data([], [])
-            self.icr_text.set_text("straight ahead: no turning centre")
+            self.centre = "straight ahead"
         else:
             self.icr.set_data([0.0], [radius])
-            self.icr_text.set_text(f"turning centre at y = {radius:.2f} m")
+            self.centre = f"turning centre at y = {radius:.2f} m"
         for bar, text, e in zip(self.bars, self.bar_text, errors, strict=True):
             bar.set_width(max(-4.0, min(4.0, e)))
             text.set_text(f"{e:+.2f}°")
         label = _GEOMETRY_NAMES[geometry] if self.vehicle == "car" else "OSR four corners"
-        self.title.set_text(f"{label}, steering {delta_deg:+.1f}°")
+        self.title.set_text(f"{label}, steering {delta_deg:+.1f}°: {self.centre}")
 
 
 def _steering_setup(vehicle):

@@ -152,20 +152,28 @@ class TwistView:
                                          float(np.clip(world[1], -LIMIT, LIMIT)) + 0.05))
             self.icr_label.set_text("ICR" if inside else "")
         vx_doc, vy_doc, w_doc = frames.ours_to_mecanum_doc_twist(twist)
-        lines = [f"ours:    vx={vx:+.2f} vy={vy:+.2f} m/s  ω={omega:+.2f} rad/s",
-                 f"         {where}",
-                 f"mecanum: Vx={vx_doc + 0.0:+.2f} Vy={vy_doc + 0.0:+.2f} ft/s "
-                 f"ω={w_doc + 0.0:+.2f}"]
+        lines = ["ours (m/s, rad/s):", f"  vx = {vx:+.2f}  vy = {vy:+.2f}",
+                 f"  ω  = {omega:+.2f}", f"  {where}",
+                 "mecanum sim. (ft/s):",
+                 f"  Vx = {vx_doc + 0.0:+.2f}  Vy = {vy_doc + 0.0:+.2f}",
+                 f"  ω  = {w_doc + 0.0:+.2f}", "rover document:"]
         if vy == 0 and omega != 0 and vx != 0:
             r_in = frames.ours_to_rover_radius(vx / omega)
             side = "right" if r_in > 0 else "left"
-            lines.append(f"rover:   r={r_in:+.1f} in ({side})")
+            lines.append(f"  r_OSR = {r_in:+.1f} in ({side})")
         elif vy == 0 and omega == 0:
-            lines.append("rover:   r=±inf (straight)")
+            lines.append("  r_OSR = ±inf (straight)")
         else:
-            lines.append("rover:   no radius (vy≠0 or spin)")
+            lines.append("  no radius (vy ≠ 0 or spin)")
         self.info.set_text("\n".join(lines))
         return self.artists
+
+
+def _text_beside(view: TwistView, fig) -> None:
+    """In a wide figure: the square plot on the left, the text box on its right."""
+    view.ax.set_position([0.09, 0.11, 0.55, 0.86])
+    view.info.set_transform(fig.transFigure)
+    view.info.set_position((0.66, 0.92))
 
 
 def _figure(figsize=(5.0, 5.0), dpi=100):
@@ -191,9 +199,10 @@ def twist_icr_panel() -> Panel:
     def setup():
         # A Figure outside pyplot: the panel redraws it itself, and pyplot never shows it again
         # under a later cell.
-        fig = Figure(figsize=(5.0, 5.0), dpi=100, layout="none")
-        fig.subplots_adjust(left=0.13, right=0.97, bottom=0.1, top=0.97)
-        return fig, TwistView(fig.add_subplot(1, 1, 1))
+        fig = Figure(figsize=(6.7, 4.4), dpi=100, layout="none")
+        view = TwistView(fig.add_subplot(1, 1, 1))
+        _text_beside(view, fig)
+        return fig, view
 
     def update(view, vx, vy, omega):
         return view.update(vx, vy, omega)  # the moving artists: the panel blits them
@@ -217,9 +226,7 @@ def twist_animation(twist: frames.Twist | None = None, frames_count: int = 40,
     fig = _figure(figsize, dpi)
     view = TwistView(fig.add_subplot(1, 1, 1), ghosts=0)
     if figsize[0] > 1.2 * figsize[1]:  # a wide frame: the square plot left, the text right
-        view.ax.set_position([0.09, 0.11, 0.55, 0.86])
-        view.info.set_transform(fig.transFigure)
-        view.info.set_position((0.66, 0.92))
+        _text_beside(view, fig)
     period = 2 * math.pi / abs(twist.omega)
     n = frames_count
     poses = frames.integrate_twist(np.tile(twist.as_array(), (n, 1)), period / n, view.start)

@@ -56,7 +56,7 @@ class DiffDriveView:
         self.enc = steps_per_m
         self.fig = fig
         gs = fig.add_gridspec(1, 2, width_ratios=(1.0, 1.2), wspace=0.3, left=0.11,
-                              right=0.96, bottom=0.15, top=0.78)
+                              right=0.96, bottom=0.15, top=0.88)
         ax = self.ax = fig.add_subplot(gs[0])
         bx = self.bx = fig.add_subplot(gs[1])
         ax.set_xlim(*_XLIM)
@@ -98,11 +98,12 @@ class DiffDriveView:
         bx.set_xticks([-2000, 0, 2000])
         self.zero_line = bx.axvline(0, color="k", lw=0.6)  # drawn over the bars
         bx.set_xlabel("wheel speed (steps/s)")
-        bx.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=8,
+        bx.set_ylim(len(_ROWS) - 0.3, -1.3)  # headroom above the first row for the legend
+        bx.legend(loc="upper center", ncol=2, fontsize=8,
                   frameon=False)
         self.bar_text = [bx.text(-2900, i + 0.42, "", fontsize=8, va="center")
                          for i in range(3)]
-        self.title = fig.suptitle("", fontsize=9, y=0.99)
+        self.title = ax.set_title("", fontsize=9, loc="left")  # spans both panels
         # Everything update() moves, in drawing order: a panel redraws only these over a
         # cached picture of the rest (the limits never change); and the frame and zero line
         # of the bar chart, drawn over the bars.
@@ -165,8 +166,7 @@ class DiffDriveView:
             note = "  OVERFLOW: wrapped" if (k == 2 and overflow) else ""
             self.bar_text[k].set_text(f"centre {centre:.0f} steps/s{note}")
             self.bar_text[k].set_color("#b35900" if note else "k")
-        self.title.set_text(f"v = {v} steps/s ({v / self.enc:.3f} m/s), "
-                            f"ω = {omega} mrad/s")
+        self.title.set_text(f"v = {v} steps/s, ω = {omega} mrad/s")
 
 
 def wheel_speeds_panel() -> Panel:

@@ -149,7 +149,7 @@ class LabView:
         ax.set_aspect("equal")
         ax.set_xlabel("x, east (m)")
         ax.set_ylabel("y, north (m)")
-        ax.legend(loc="lower left", fontsize=7, ncol=3, framealpha=0.9)
+        ax.legend(loc="lower left", fontsize=8, ncol=3, framealpha=0.9)
 
         self._blit = BlitList(ax, [self.truth, self.estimate, self.robot, self.text])
 
@@ -173,7 +173,7 @@ class LabView:
 
 
 def _setup():
-    fig, ax = plt.subplots(figsize=(5.5, 5.5))
+    fig, ax = plt.subplots(figsize=(4.8, 4.8), layout="none")
     view = LabView(ax)
     ax.set_title("Closed-loop lap (fast kinematic skid-steer model)", fontsize=10)
     fig.tight_layout()
