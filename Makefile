@@ -24,7 +24,7 @@ NB_ENV := PYTHONHASHSEED=0 MPLBACKEND=module://matplotlib_inline.backend_inline 
 
 LAYERS := lint unit nbval book browser kit pdf
 
-.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean lab student grade tex
+.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean mutation lab student grade tex
 
 help:
 	@echo "make book       build the HTML book into _build/html (set-up included)"
@@ -33,6 +33,7 @@ help:
 	@echo "make serve      build, then serve _build/html on http://127.0.0.1:$(PORT)"
 	@echo "make lab        JupyterLab (pinned, with jupyterlab-myst) in notebooks/ on 127.0.0.1:$(LAB_PORT)"
 	@echo "make bench      run every benchmark (benchmarks/run_all.py)"
+	@echo "make mutation   mutate the formula modules; the unit tests must kill every mutant"
 	@echo "make student    student edition: notebooks without solutions + web edition in _build/student"
 	@echo "make grade SUBMISSIONS=dir   grade submitted notebooks into _build/grades (grades.csv, results.json)"
 	@echo "make pdf        the printed edition, _build/pdf/wheelkin.pdf (make tex installs TeX, as root)"
@@ -114,6 +115,10 @@ serve: book
 
 bench: book
 	$(BIN)/python benchmarks/run_all.py
+
+# Meaningful mutants of the formula modules, one at a time in a temporary copy (tools/mutation.py).
+mutation: $(STAMP)
+	$(BIN)/python tools/mutation.py
 
 # The instructor's kit (tools/student_edition.py, tools/grade.py, tools/pdf_edition.py).
 student: vendor

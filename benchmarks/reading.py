@@ -70,7 +70,9 @@ _MEASURE = r"""
   const main = document.querySelector("#main-content article") ||
                document.querySelector("#main-content") || document.querySelector("main") ||
                document.body;
-  const shown = el => el.getClientRects().length > 0 &&
+  // Folded content (a closed <details>: hide-input cells, dropdowns) is not on screen, though
+  // Chromium still gives it client rects.
+  const shown = el => el.getClientRects().length > 0 && !el.closest("details:not([open])") &&
                       getComputedStyle(el).visibility !== "hidden";
   const canvas = document.createElement("canvas").getContext("2d");
   let code = 0, overflow = 0;
@@ -124,7 +126,12 @@ def serve(site: Path):
 
 
 def _settle(page) -> None:
-    page.wait_for_load_state("networkidle", timeout=30_000)
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
+    try:  # a busy machine can keep a page's network from idling: then measure what loaded
+        page.wait_for_load_state("networkidle", timeout=60_000)
+    except PlaywrightTimeout:
+        pass
     page.evaluate("""async () => {
         if (window.MathJax && MathJax.startup && MathJax.startup.promise) {
           await MathJax.startup.promise; }

@@ -694,3 +694,11 @@ def test_pose_rate_by_hand_and_vectorised():
         frames.pose_rate(math.nan, Twist(1.0, 0.0, 0.0))
     with pytest.raises(ValueError, match="twist"):
         frames.pose_rate(0.0, [1.0, 0.0])
+
+
+def test_relative_heading_is_wrapped():
+    # from heading 3.0 to heading -3.0 is a turn of 2 pi - 6 = +0.283 rad, not -6 rad
+    d = frames.relative(Pose(0.0, 0.0, 3.0), Pose(0.0, 0.0, -3.0))
+    assert d.theta == pytest.approx(2 * math.pi - 6.0, abs=1e-15)
+    out = frames.relative([[0.0, 0.0, -3.0]], [[0.0, 0.0, 3.0]])
+    assert out[0, 2] == pytest.approx(6.0 - 2 * math.pi, abs=1e-15)

@@ -12,13 +12,17 @@ For each file of ``SUBMISSIONS`` (any file: one that is not a notebook gets a cl
    top to bottom in a fresh kernel of this environment, with a time limit for the whole
    notebook (``--timeout``) and a limit on what it prints (``--max-output``). The kernel's
    working directory, ``HOME`` and ``TMPDIR`` are inside that folder; when the grader runs as
-   root, the kernel runs as ``nobody`` (``setpriv``), so it cannot write outside the folder;
+   root, the kernel runs as ``nobody`` (``setpriv``), so it cannot write to the repository or
+   anywhere but the folder and the world-writable ``/tmp``-like places (when ``nobody`` cannot
+   run this Python, e.g. a repository in a private folder, it runs as the grader's user and
+   the results say so);
    ``prlimit`` caps its memory and the size of any file it writes. A cell that raises does
    not stop the run (the error is reported, the later cells still run).
 2. **Find the exercises**: every ``check("chapter.name", fn)`` call in the notebook names an
    exercise and the expression of the student's function.
 3. **Grade each exercise** by calling the student's function, in the student's kernel, on the
-   exercise's visible cases and on hidden ones (the visible inputs scaled and perturbed); the
+   exercise's visible cases and on hidden ones (the visible inputs changed by 5-25 %, within
+   the range the visible cases span, so a hidden case stays in the exercise's regime); the
    expected values are computed here, in the grader's process, from the registry's reference,
    never in the student's kernel. While the function runs, a profiler watches it: a call into
    the ``wheelkin`` package (the library, or the registry's reference) scores 0 and says so,

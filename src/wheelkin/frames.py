@@ -58,6 +58,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin import _kernels
 from wheelkin import _validate as v
@@ -412,7 +413,7 @@ def se2_exp(twist, dt):
     return _pack(Pose, (dx, dy, dth), is_twist)
 
 
-def se2_log(delta, dt=1.0):
+def se2_log(delta: Pose | ArrayLike, dt: float = 1.0) -> Twist | np.ndarray:
     r"""The constant body twist that moves the body by ``delta`` in ``dt`` seconds: the inverse
     of :func:`se2_exp`.
 
@@ -469,7 +470,7 @@ class PoseRate(NamedTuple):
     theta_dot: float
 
 
-def pose_rate(theta, twist):
+def pose_rate(theta: ArrayLike, twist: Twist | ArrayLike) -> PoseRate | np.ndarray:
     r"""The world-frame rate of change of the pose of a body with heading ``theta`` moving
     with the body-frame ``twist``.
 

@@ -61,6 +61,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin import _kernels
 from wheelkin import _validate as v
@@ -347,7 +348,8 @@ def _travel_pair(delta_left, delta_right) -> tuple[np.ndarray, np.ndarray]:
     return left, right
 
 
-def body_motion(delta_left, delta_right, track_width: float) -> BodyMotion:
+def body_motion(delta_left: ArrayLike, delta_right: ArrayLike,
+                track_width: float) -> BodyMotion:
     r"""Travel of the mid-point and change of heading in each update, from wheel travels (SI).
 
     .. math::
@@ -379,8 +381,8 @@ def body_motion(delta_left, delta_right, track_width: float) -> BodyMotion:
     return BodyMotion(0.5 * (left + right), (right - left) / w)
 
 
-def integrate_si(delta_left, delta_right, track_width: float, method: str = "exact",
-                 pose=(0.0, 0.0, 0.0)) -> np.ndarray:
+def integrate_si(delta_left: ArrayLike, delta_right: ArrayLike, track_width: float,
+                 method: str = "exact", pose: ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
     r"""Dead-reckon a differential drive from its wheel travels in metres: the SI twin of
     :func:`integrate`.
 

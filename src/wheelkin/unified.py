@@ -807,7 +807,8 @@ def rover_wheels(geometry=None, wheel_radius: float = 0.06,
     Wheels LF, LM, LB, RF, RM, RB at the document's positions
     (:func:`wheelkin.rover.wheel_positions`, inches, times 0.0254); the middle wheels fixed,
     the corners steered to the document's turn of radius ``radius_in``
-    (:func:`wheelkin.rover.corner_angles`, whose positive angle turns the wheel clockwise, so :math:`\delta_i = -\delta_i^{doc}`).
+    (:func:`wheelkin.rover.corner_angles`, whose positive angle turns the wheel clockwise,
+    so :math:`\delta_i = -\delta_i^{doc}`).
 
     Parameters
     ----------

@@ -155,7 +155,7 @@ _IMAGES_WITHOUT_ALT = r"""
 # Figure images of the page (cell outputs, animation players), at their shown size.
 _IMAGES = r"""
 () => [...document.querySelectorAll(".cell_output img, div.animation img")]
-  .filter(img => img.getClientRects().length > 0)
+  .filter(img => img.getClientRects().length > 0 && !img.closest("details:not([open])"))
   .map(img => ({src: img.currentSrc || img.src, natural: img.naturalWidth,
                 shown: img.getBoundingClientRect().width,
                 animation: !!img.closest("div.animation"),
@@ -168,7 +168,8 @@ _OVERFLOWING_CODE = r"""
   const canvas = document.createElement("canvas").getContext("2d");
   const found = [];
   for (const pre of document.querySelectorAll(".cell_input pre, div.highlight pre")) {
-    if (pre.getClientRects().length === 0) continue;  // folded away
+    // Folded away: a closed <details> (Chromium still gives its content client rects).
+    if (pre.getClientRects().length === 0 || pre.closest("details:not([open])")) continue;
     if (pre.closest(".cell_output")) continue;  // an output, not code
     const style = getComputedStyle(pre);
     canvas.font = `${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;

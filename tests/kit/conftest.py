@@ -8,6 +8,7 @@ it), never by the library layer's ``pytest tests``.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -23,7 +24,8 @@ def pytest_ignore_collect(collection_path, config):
     asked = [Path(str(a).split("::")[0]).resolve() for a in config.args]
     if any(a == HERE or HERE in a.parents for a in asked):
         return None
-    if collection_path.resolve() == HERE:
+    path = collection_path.resolve()
+    if path == HERE or HERE in path.parents:
         return True
     return None
 
@@ -31,7 +33,13 @@ def pytest_ignore_collect(collection_path, config):
 @pytest.fixture(scope="session")
 def student_edition(tmp_path_factory):
     """The student edition, built once (notebooks executed, web edition), as ``make student``
-    builds it: ``(folder, stray globals found before each exercise stub)``."""
+    builds it: ``(folder, stray globals found before each exercise stub)``. Set
+    ``WHEELKIN_STUDENT_EDITION`` to a built edition's folder to test that one instead."""
+    given = os.environ.get("WHEELKIN_STUDENT_EDITION")  # reuse a built one (make student)
+    if given:
+        out = Path(given).resolve()
+        stray = json.loads((out / "stray_globals.json").read_text(encoding="utf-8"))
+        return out, stray
     out = tmp_path_factory.mktemp("student") / "edition"
     done = subprocess.run([sys.executable, str(ROOT / "tools" / "student_edition.py"),
                            "--out", str(out), "-j", "2"], capture_output=True, text=True,

@@ -33,7 +33,7 @@ def text():
         pytest.fail("pdftotext is missing: run `make tex` (poppler-utils)")
     done = subprocess.run(["pdftotext", "-layout", str(PDF), "-"], capture_output=True,
                           text=True, check=True)
-    return done.stdout
+    return done.stdout.replace("\u2019", "'").replace("\u2018", "'")
 
 
 def _first_animation():
@@ -62,9 +62,10 @@ def test_the_pdf_has_the_whole_book(text):
 
 
 def test_no_animation_player_or_live_panel_leaked(text):
+    flat = " ".join(text.split())
     for leaked in ("frames[", "_anim_img", "data:image/png;base64", "anim_step_forward",
-                   "Live panel", "NotImplementedError\n\n\ncheck"):
-        assert leaked not in text
+                   "Needs a running kernel"):  # the live panel's margin note
+        assert leaked not in flat
 
 
 def test_an_animation_becomes_frames_and_its_caption(text):
@@ -78,7 +79,7 @@ def test_an_animation_becomes_frames_and_its_caption(text):
 
 
 def test_strip_outputs_of_a_player():
-    """A to_jshtml-like player with 10 frames becomes frames 1, 6, 10 and the caption."""
+    """A to_jshtml-like player with 10 frames becomes frames 1, 5, 10 and the caption."""
     from PIL import Image
 
     pngs = []
@@ -92,11 +93,11 @@ def test_strip_outputs_of_a_player():
               + "<figcaption>The square &amp; its shade.</figcaption>")
     outputs = pdf_edition.strip_outputs(markup, 1, 0)
     assert [o.data["text/plain"] for o in outputs[:-1]] == [
-        "<frame 1 of 10>", "<frame 6 of 10>", "<frame 10 of 10>"]
+        "<frame 1 of 10>", "<frame 5 of 10>", "<frame 10 of 10>"]
     assert outputs[-1].data["text/markdown"] == (
-        "*Animation, frames 1, 6, 10 of 10.* The square & its shade.")
+        "*Animation, frames 1, 5, 10 of 10.* The square & its shade.")
     frame = Image.open(io.BytesIO(base64.b64decode(outputs[1].data["image/png"])))
-    assert frame.getpixel((5, 5))[0] == 5 * 20 and round(frame.info["dpi"][0]) == 100
+    assert frame.getpixel((5, 5))[0] == 4 * 20 and round(frame.info["dpi"][0]) == 100
 
 
 def test_print_notebook_leaves_out_folded_code_panels_and_solutions():

@@ -27,8 +27,8 @@ def _tags(cell) -> set[str]:
 
 
 def _solution_lines(nb) -> list[str]:
-    """Distinctive lines of the solution cells (not in any stub, long enough to be unique)."""
-    stubs = "\n".join(c.source for c in nb.cells if "exercise" in _tags(c))
+    """Distinctive lines of the solution cells (in no other cell, long enough to be unique)."""
+    stubs = "\n".join(c.source for c in nb.cells if "solution" not in _tags(c))
     lines = []
     for cell in nb.cells:
         if "solution" in _tags(cell):
