@@ -396,8 +396,10 @@ def test_exercise_references_are_independent_of_the_shortcuts():
     # Tightest turn at 35 degrees, by hand.
     assert ex.tightest_turn(7.254, 10.5, 10.5, 35.0) == pytest.approx(
         7.254 + 10.5 / math.tan(math.radians(35)))
-    # Corner angles with d2 != d3, by hand (r = 40, d1 = 6, d2 = 14, d3 = 9).
-    want = [math.atan(9 / 46), math.atan(9 / 34), -math.atan(14 / 46), -math.atan(14 / 34)]
+    # Corner angles with d2 != d3, by hand, in the book's sign (R = +40 in turns left, so
+    # the left corners are inner: 40 - 6 = 34 in from the turning centre; d1 = 6, d2 = 14,
+    # d3 = 9; order LF, RF, LB, RB; positive = turned left).
+    want = [math.atan(9 / 34), math.atan(9 / 46), -math.atan(14 / 34), -math.atan(14 / 46)]
     np.testing.assert_allclose(ex.corner_angles_general(40.0, 6.0, 14.0, 9.0), want)
     # Normalised speeds: the fastest wheel gets the command, the ratios are kept.
     v = ex.normalised_wheel_speeds(40.0, 100.0, 7.254, 25.0, 25.0, 10.073)

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import math
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 from matplotlib.colors import to_hex
 from matplotlib.figure import Figure
 
+from wheelkin import style
 from wheelkin.animation import to_html
 from wheelkin.sandbox import (
     LAB_ROBOT,
@@ -176,10 +178,11 @@ def test_slip_panel_blits_the_picture_of_a_full_draw():
         for mu, omega in ((0.8, 2.0), (0.05, 6.0), (1.0, 0.0), (0.3, 4.0), (0.8, 2.0)):
             panel.redraw(mu=mu, omega=omega)
             blitted = np.asarray(Image.open(io.BytesIO(panel.image.value)))
-            fig = Figure(figsize=(6.0, 4.6), dpi=72)  # a fresh figure drawn whole
-            FigureCanvasAgg(fig)
-            SlipView(fig).update(mu, omega)
-            fig.canvas.draw()
+            with plt.rc_context(style._RC):  # a fresh figure drawn whole, in the book's style
+                fig = Figure(figsize=(6.0, 4.6), dpi=100, layout="none")
+                FigureCanvasAgg(fig)
+                SlipView(fig).update(mu, omega)
+                fig.canvas.draw()
             np.testing.assert_array_equal(blitted, np.asarray(fig.canvas.buffer_rgba()))
             assert f"grip ≈ {0.8 * mu * GRAVITY:.1f}" in panel.state.title.get_text()
     finally:

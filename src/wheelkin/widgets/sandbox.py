@@ -116,7 +116,7 @@ def slip_panel() -> Panel:
     """Sliders for the friction coefficient and the commanded yaw rate."""
 
     def setup():
-        fig = Figure(figsize=(6.0, 4.6), dpi=72, layout="none")
+        fig = Figure(figsize=(6.0, 4.6), dpi=100, layout="none")
         return fig, SlipView(fig)
 
     def update(view: SlipView, mu: float, omega: float) -> list:
