@@ -172,6 +172,14 @@ _OVERFLOWING_CODE = r"""
     if (pre.getClientRects().length === 0 || pre.closest("details:not([open])")) continue;
     if (pre.closest(".cell_output")) continue;  // an output, not code
     const style = getComputedStyle(pre);
+    // A block that wraps its lines (the library reference's examples) cannot scroll
+    // sideways as long as nothing in it is wider than its box.
+    if (style.whiteSpace === "pre-wrap" || style.whiteSpace === "break-spaces") {
+      if (pre.scrollWidth > pre.clientWidth + 1) {
+        found.push(`${pre.scrollWidth} px > ${pre.clientWidth} px: a wrapped block overflows`);
+      }
+      continue;
+    }
     canvas.font = `${style.fontWeight} ${style.fontSize} ${style.fontFamily}`;
     const inner = pre.clientWidth - parseFloat(style.paddingLeft) -
                   parseFloat(style.paddingRight);
