@@ -20,7 +20,7 @@ order, from ``tools/book_pages.py``):
 
 A page of ``_toc.yml`` missing from the build, or a local file that a page references but
 that is not in the build, makes the measurement void: it is listed, and the exit status is 1.
-Every ``notebooks/*.ipynb`` file's size is checked against the same budget. A budget not met is
+Every notebook's (``notebooks/**/*.ipynb``) size is checked against the same budget. A budget not met is
 a verdict in the table (the exit status stays 0, as for the other benchmarks).
 
 Usage: ``python benchmarks/sizes.py [--root DIR] [--no-write]``; ``--root`` measures another
@@ -198,8 +198,9 @@ def measure(root: Path) -> dict:
         sources = [root / f"{page}{suffix}" for suffix in (".ipynb", ".md")]
         newer = [s for s in sources if s.is_file() and s.stat().st_mtime > html.stat().st_mtime]
         pages.append({"page": page, "absent": False, "stale": bool(newer), **sizes})
-    notebooks = [{"name": p.name, "size": p.stat().st_size}
-                 for p in sorted((root / "notebooks").glob("*.ipynb"))]
+    notebooks = [{"name": p.relative_to(root / "notebooks").as_posix(), "size": p.stat().st_size}
+                 for p in sorted((root / "notebooks").glob("**/*.ipynb"))
+                 if ".ipynb_checkpoints" not in p.parts]
     commit = _git(root, "rev-parse", "--short", "HEAD")
     dirty = _git(root, "status", "--porcelain", "--", "notebooks", "book", "_toc.yml")
     return {"root": root, "site": site, "pages": pages, "notebooks": notebooks,
