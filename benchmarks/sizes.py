@@ -20,8 +20,8 @@ order, from ``tools/book_pages.py``):
 
 A page of ``_toc.yml`` missing from the build, or a local file that a page references but
 that is not in the build, makes the measurement void: it is listed, and the exit status is 1.
-Every notebook's (``notebooks/**/*.ipynb``) size is checked against the same budget. A budget not met is
-a verdict in the table (the exit status stays 0, as for the other benchmarks).
+Every notebook's (``notebooks/**/*.ipynb``) size is checked against the same budget. A budget
+not met is a verdict in the table (the exit status stays 0, as for the other benchmarks).
 
 Usage: ``python benchmarks/sizes.py [--root DIR] [--no-write]``; ``--root`` measures another
 checkout's build (its ``_toc.yml``, ``_build/html`` and ``notebooks/``), e.g. a scratch copy.

@@ -270,7 +270,7 @@ class PursuitView:
         note = " (beyond the steering limit)" if clipped != delta else ""
         self.text.set_text(f"κ = 2y/L_d² = {kappa:+.2f} 1/m\nδ = {math.degrees(delta):+.1f}°"
                            + note)
-        self.title.set_text(f"look-ahead L_d = {lookahead:.2f} m at {bearing_deg:+.0f}°")
+        self.title.set_text(f"look-ahead $L_d$ = {lookahead:.2f} m at {bearing_deg:+.0f}°")
 
 
 def pursuit_panel() -> Panel:
