@@ -1063,16 +1063,26 @@ def propagate_covariance(pose, covariance, delta_left: float, delta_right: float
     sigma = _covariance(covariance)
     left = _travel("delta_left", delta_left)
     right = _travel("delta_right", delta_right)
-    w = _checks.positive("track_width", track_width)
-    kl = _wheel_noise("k_left", k_left)
-    kr = _wheel_noise("k_right", k_right)
+    w, kl, kr = _noise_model(track_width, k_left, k_right)
     ds, dth = _body(left, right, w)
     _turns(dth, w)
     f_pose, f_wheels = _jacobians(p[2], ds, dth, w)
     q = np.diag([kl * abs(left), kr * abs(right)])
-    new = f_pose @ sigma @ f_pose.T + f_wheels @ q @ f_wheels.T
+    new = _covariance_step(f_pose, sigma, f_wheels @ q @ f_wheels.T)
     x, y, theta = _arc_step(float(p[0]), float(p[1]), float(p[2]), ds, dth)
-    return PoseCovariance(np.array([x, y, theta]), 0.5 * (new + new.T))
+    return PoseCovariance(np.array([x, y, theta]), new)
+
+
+def _noise_model(track_width, k_left, k_right) -> tuple[float, float, float]:
+    """The validated track width and the two wheels' error variances per metre."""
+    return (_checks.positive("track_width", track_width), _wheel_noise("k_left", k_left),
+            _wheel_noise("k_right", k_right))
+
+
+def _covariance_step(f_pose: np.ndarray, sigma: np.ndarray, noise: np.ndarray) -> np.ndarray:
+    """One propagation step, F Σ Fᵀ + noise, made exactly symmetric."""
+    step = f_pose @ sigma @ f_pose.T + noise
+    return 0.5 * (step + step.T)
 
 
 def _increment_pair(delta_left, delta_right) -> tuple[np.ndarray, np.ndarray]:
@@ -1148,9 +1158,7 @@ def propagate_path(pose, covariance, delta_left, delta_right, track_width: float
     p0 = _pose_si(pose)
     sigma = _covariance(covariance)
     left, right = _increment_pair(delta_left, delta_right)
-    w = _checks.positive("track_width", track_width)
-    kl = _wheel_noise("k_left", k_left)
-    kr = _wheel_noise("k_right", k_right)
+    w, kl, kr = _noise_model(track_width, k_left, k_right)
     ds, dth = _body(left, right, w)
     _turns(dth, w)
     after = _path_poses(p0, ds, dth)
@@ -1161,9 +1169,7 @@ def propagate_path(pose, covariance, delta_left, delta_right, track_width: float
     out = np.empty((len(poses), 3, 3))
     out[0] = sigma
     for k in range(len(ds)):
-        f = f_pose[k]
-        step = f @ out[k] @ f.T + noise[k]
-        out[k + 1] = 0.5 * (step + step.T)
+        out[k + 1] = _covariance_step(f_pose[k], out[k], noise[k])
     return PathCovariance(poses, out)
 
 
@@ -1218,9 +1224,7 @@ def monte_carlo_poses(pose, delta_left, delta_right, track_width: float, k_left:
     """
     p0 = _pose_si(pose)
     left, right = _increment_pair(delta_left, delta_right)
-    w = _checks.positive("track_width", track_width)
-    kl = _wheel_noise("k_left", k_left)
-    kr = _wheel_noise("k_right", k_right)
+    w, kl, kr = _noise_model(track_width, k_left, k_right)
     if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
         raise ValueError(f"runs must be a whole number >= 1, got {runs!r}")
     if not isinstance(rng, np.random.Generator):
