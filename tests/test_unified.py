@@ -556,7 +556,7 @@ def test_constraint_view_marks_exactly_the_wheels_that_must_slide():
     from wheelkin.sandbox.render import SLIP_COLOUR
     from wheelkin.widgets.unified import ConstraintView
 
-    view = ConstraintView(Figure())
+    view = ConstraintView(Figure(layout="none"))  # as the panel makes it
     view.update(0.0, 0.3, 0.0, steer=True)  # strafe left
     red = {}
     for name, item in zip(view.vehicles, view.items, strict=True):

@@ -501,7 +501,6 @@ def animate(
                     bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8})
     if any(names) or extras or plan_arr is not None:
         ax.legend(loc="lower right", fontsize=8, framealpha=0.8)
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.tight_layout()
 
     def update(f: int):

@@ -225,7 +225,6 @@ class PursuitView:
 
     def __init__(self, fig) -> None:
         ax = self.ax = fig.add_subplot(1, 1, 1)
-        fig.set_layout_engine("none")  # the book style's constrained layout would skip this
         fig.subplots_adjust(left=0.12, right=0.97, bottom=0.13, top=0.9)
         ax.set_xlim(-0.3, 1.6)
         ax.set_ylim(-0.9, 0.9)

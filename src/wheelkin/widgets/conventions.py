@@ -178,7 +178,6 @@ def _text_beside(view: TwistView, fig) -> None:
 
 def _figure(figsize=(5.0, 5.0), dpi=100):
     fig = plt.figure(figsize=figsize, dpi=dpi, layout="none")
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.subplots_adjust(left=0.13, right=0.97, bottom=0.1, top=0.97)
     return fig
 

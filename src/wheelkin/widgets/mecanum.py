@@ -228,7 +228,6 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
         ax.set_title(title, fontsize=10, loc="left")
     label = fig.text(0.02, 0.02, "", ha="left", va="bottom", fontsize=9,
                      family="monospace")
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.subplots_adjust(left=0.1, right=0.97, top=0.93, bottom=0.2)
 
     def update(k):
@@ -347,7 +346,6 @@ def _floor_axes(bottom: float):
     ``bottom`` of the figure left free for the panel's text."""
     fig, ax = plt.subplots(figsize=(4.9, 4.5), dpi=72,  # fits a 1366 x 768 screen
                            layout="none")
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.subplots_adjust(bottom=bottom)
     ax.set_aspect("equal")
     ax.grid(True, lw=0.4, alpha=0.5)

@@ -212,7 +212,6 @@ def _figure(figsize=(6.7, 3.5), dpi=100) -> Figure:
     # renders it into its own image; an animation into its HTML player).
     fig = Figure(figsize=figsize, dpi=dpi, layout="none")
     FigureCanvasAgg(fig)
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.subplots_adjust(left=0.09, right=0.99, bottom=0.15, top=0.92)
     return fig
 

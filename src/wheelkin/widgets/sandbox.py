@@ -38,7 +38,6 @@ class SlipView:
     def __init__(self, fig: Figure) -> None:
         self.fig = fig
         ax = self.ax = fig.add_subplot()
-        fig.set_layout_engine("none")  # the book style's constrained layout would skip this
         fig.subplots_adjust(left=0.12, right=0.97, bottom=0.13, top=0.88)
         ax.set_aspect("equal")
         ax.set_xlim(-0.9, 1.6)

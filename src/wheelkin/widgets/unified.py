@@ -101,7 +101,6 @@ class ConstraintView:
             self.items.append({"spec": spec, "wheels": wheels, "drawing": drawing,
                                "velocity": velocity, "slide": slide, "text": text,
                                "points": points, "scale": 0.8 * reach / 0.5})
-        fig.set_layout_engine("none")  # the book style's constrained layout would skip this
         fig.subplots_adjust(left=0.01, right=0.99, bottom=0.02, top=0.86, wspace=0.05,
                             hspace=0.3)
 
@@ -204,7 +203,6 @@ def twist_tour_animation(frames: int = 32, figsize=(6.7, 4.8), dpi: int = 100
     twists = tour_twists(frames)
     fig = Figure(figsize=figsize, dpi=dpi, layout="none")
     view = ConstraintView(fig)
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.subplots_adjust(top=0.8, hspace=0.35)
     stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
 
@@ -265,7 +263,6 @@ def manoeuvre_animation(runs: dict, frames: int = 16, figsize=(6.7, 5.4), dpi: i
         trails.append(line)
         axes.append(ax)
     stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.subplots_adjust(left=0.08, right=0.99, bottom=0.05, top=0.86, wspace=0.25,
                         hspace=0.3)
     n_total = frames * len(titles)

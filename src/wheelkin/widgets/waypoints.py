@@ -176,7 +176,6 @@ def _setup():
     fig, ax = plt.subplots(figsize=(4.8, 4.8), layout="none")
     view = LabView(ax)
     ax.set_title("Closed-loop lap (fast kinematic skid-steer model)", fontsize=10)
-    fig.set_layout_engine("none")  # the book style's constrained layout would skip this
     fig.tight_layout()
     return fig, view
 
