@@ -243,7 +243,7 @@ import inspect  # noqa: E402
 import typing  # noqa: E402
 
 #: Callables that read a sandbox vehicle (the sandbox is validated on its own, not here).
-SANDBOX_BOUND = {"unified.from_sandbox"}
+SANDBOX_BOUND: set[str] = set()
 FORMULA_MODULES = ("units", "frames", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
                    "follower", "unified")
 
@@ -282,7 +282,7 @@ def _good_values() -> dict:
         # diffdrive
         "track_width": 0.3, "v_left": 0.2, "v_right": 0.4, "fl": 0.2, "fr": 0.3, "rl": 0.2,
         "rr": 0.3, "v_steps_per_s": 1000.0, "omega_mrad_per_s": 500.0,
-        "v_linear_steps_per_s": 1000.0, "wheel_base_mm": 85, "values": [1, 2, 3], "bits": 16,
+        "v_linear_steps_per_s": 1000.0, "track_width_mm": 85, "values": [1, 2, 3], "bits": 16,
         "numerator": [7, -7], "denominator": [2, 2], "method": "exact", "window": 0.1,
         "min_steps": 2, "counts": [0, 5, 10, 15], "times": [0.0, 0.1, 0.2, 0.3],
         "timeout": 1.0,
@@ -392,7 +392,7 @@ OVERRIDES = {
     "rover.wheel_commands": {"v": 0.3, "omega": 0.1, "geometry": None},
     "units.steps_to_distance": {"steps": 100.0, "steps_per_m": 8043.7},
     "units.distance_to_steps": {"distance": 0.5, "steps_per_m": 8043.7},
-    "diffdrive.body_twist_steps": {"left": 1000.0, "right": 1200.0, "wheel_base_mm": 85.0,
+    "diffdrive.body_twist_steps": {"left": 1000.0, "right": 1200.0, "track_width_mm": 85.0,
                                    "steps_per_m": 8043.0},
     "odometry.monte_carlo_poses": {"rng": None},
     "odometry.propagate_covariance": {"delta_left": 0.1, "delta_right": 0.12},
@@ -412,13 +412,13 @@ OVERRIDES = {
                                     "window": 0.15},
     "diffdrive.wrap_int": {"values": [1, 2, 3]},
     "diffdrive.c_divide": {"numerator": 7, "denominator": 2},
-    "diffdrive.DiffDriveConstants": {"wheel_base_mm": 85, "steps_per_m": 8043},
-    "diffdrive.q16_turn_factor": {"wheel_base_mm": 85, "steps_per_m": 8043},
-    "diffdrive.int32_omega_limit": {"wheel_base_mm": 85, "steps_per_m": 8043},
+    "diffdrive.DiffDriveConstants": {"track_width_mm": 85, "steps_per_m": 8043},
+    "diffdrive.q16_turn_factor": {"track_width_mm": 85, "steps_per_m": 8043},
+    "diffdrive.int32_omega_limit": {"track_width_mm": 85, "steps_per_m": 8043},
     "diffdrive.speed_resolution": {"window": 0.1, "steps_per_m": 8043.0},
     "diffdrive.time_to_count": {"min_steps": 2, "speed": 0.1, "steps_per_m": 8043.0},
     "odometry.plan_wheel_travel": {"segments": [(100.0, 0.0), (0.0, 1.0)],
-                                   "wheel_base_mm": 85.0, "max_step_mm": 5.0},
+                                   "track_width_mm": 85.0, "max_step_mm": 5.0},
     "odometry.encoder_increments": {"travel_mm": [[1.0, 1.5], [2.0, 2.0]],
                                     "steps_per_mm": 8.0},
     "unified.skid_steer_wheels": {"half_track": 0.06, "half_wheelbase": 0.05},

@@ -340,9 +340,9 @@ def test_skid_steer_pairs_and_inverse():
 
 def test_constants():
     c = dd.RADON_ULZER_CONSTANTS
-    assert (c.wheel_base_mm, c.steps_per_m) == (85, 8043)
+    assert (c.track_width_mm, c.steps_per_m) == (85, 8043)
     assert 12 * 75810 * 1000 // 113097 == c.steps_per_m  # the firmware's integer formula
-    with pytest.raises(ValueError, match="wheel_base_mm"):
+    with pytest.raises(ValueError, match="track_width_mm"):
         dd.DiffDriveConstants(0, 8043)
     with pytest.raises(ValueError, match="steps_per_m"):
         dd.DiffDriveConstants(85, 8043.5)
@@ -361,7 +361,7 @@ def test_constants():
         (lambda: dd.wheel_speeds([1, 2], [1, 2, 3], 0.1), "v and omega"),
         (lambda: dd.body_twist("fast", 0, 0.1), "v_left"),
         (lambda: dd.body_twist(0, 0, float("nan")), "track_width"),
-        (lambda: dd.wheel_speeds_steps(0, 0, 0, 8043), "wheel_base_mm"),
+        (lambda: dd.wheel_speeds_steps(0, 0, 0, 8043), "track_width_mm"),
         (lambda: dd.wheel_speeds_steps(0, 0, 85, -1), "steps_per_m"),
         (lambda: dd.wheel_speeds_steps([1, 2], [1, 2, 3], 85, 8043), "v_steps_per_s"),
         (lambda: dd.body_twist_steps(float("nan"), 0, 85, 8043), "left"),
@@ -370,13 +370,13 @@ def test_constants():
         (lambda: dd.wheel_speeds_steps_int32(0.5, 0), "v_steps_per_s"),
         (lambda: dd.wheel_speeds_steps_int32(0, 40000), "omega_mrad_per_s"),
         (lambda: dd.wheel_speeds_steps_int32(0, float("nan")), "omega_mrad_per_s"),
-        (lambda: dd.wheel_speeds_steps_int32(0, 0, 85.5, 8043), "wheel_base_mm"),
+        (lambda: dd.wheel_speeds_steps_int32(0, 0, 85.5, 8043), "track_width_mm"),
         (lambda: dd.wheel_speeds_steps_int32(0, 0, 85, 0), "steps_per_m"),
         (lambda: dd.wheel_speeds_steps_int32([1, 2], [1, 2, 3]), "v_steps_per_s"),
         (lambda: dd.wrap_int(1.5), "values"),
         (lambda: dd.wrap_int(1, bits=12), "bits"),
         (lambda: dd.c_divide(1, 0), "denominator"),
-        (lambda: dd.int32_omega_limit(0, 8043), "wheel_base_mm"),
+        (lambda: dd.int32_omega_limit(0, 8043), "track_width_mm"),
         (lambda: dd.q16_turn_factor(85, -2), "steps_per_m"),
         (lambda: dd.speed_resolution(0, 8043), "window"),
         (lambda: dd.time_to_count(6, 0.0, 8043), "speed"),

@@ -69,7 +69,7 @@ def test_raised_names_the_case_and_the_error():
     [
         (lambda x, y: [2 * x + y, 0.0], "you returned shape (2,)"),
         (lambda x, y: "three", "which is not a number"),
-        (lambda x, y: None, "forget the `return`"),
+        (lambda x, y: None, "forget the 'return'"),
         (lambda x, y: {"a": 1}, "which is not a number"),
     ],
 )

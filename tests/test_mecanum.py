@@ -329,7 +329,7 @@ def test_go_to_point_at_goal_and_vectorised():
         (lambda: MecanumGeometry(0.05, 0.2, -1), "half_track"),
         (lambda: MecanumGeometry(0.05, 0.2, 0.15, roller_angle=math.pi / 2), "roller_angle"),
         (lambda: inverse_kinematics(float("nan"), 0, 0, G), "vx"),
-        (lambda: inverse_kinematics(0, [1, 2], [1, 2, 3], G), "vy, omega"),
+        (lambda: inverse_kinematics(0, [1, 2], [1, 2, 3], G), "vy and omega"),
         (lambda: inverse_kinematics(0, 0, float("inf"), G), "omega"),
         (lambda: inverse_kinematics(0, 0, 0, (0.05, 0.2, 0.15)), "geometry"),
         (lambda: forward_kinematics([1, 2, 3], G), "wheel_rates"),

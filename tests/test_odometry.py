@@ -316,6 +316,35 @@ def test_fixed_point_carry_stays_close_to_floating_point_over_a_long_run():
     assert abs(carry[-1, 2] - exact_mrad) <= 1 + 10 * 0.2
 
 
+def test_fixed_point_source_rounding_by_hand():
+    # Util::divRoundUp read from the firmware's Util.cpp: C quotient, then one step away from 0
+    # when |remainder| >= |b / 2| (a quotient of 0 steps to +1).
+    # 100 steps: 100000 / 8043 = 12 r 3484 < 4021 -> 12 mm; 12000 / 85 = 141 r 15 -> 141 mrad
+    assert odo.firmware_fixed_point([[0, 100]], 8.043, W, alpha_rounding="source")[0, 2] == 141
+    # -100 steps: -12 r -3484 -> -12 mm -> -141 mrad (symmetric when the quotient is not 0)
+    assert odo.firmware_fixed_point([[100, 0]], 8.043, W, alpha_rounding="source")[0, 2] == -141
+    # 5 steps: 5000 / 8043 = 0 r 5000 >= 4021 -> 1 mm -> 1000 / 85 = 11 r 65 >= 42 -> 12 mrad
+    assert odo.firmware_fixed_point([[0, 5]], 8.043, W, alpha_rounding="source")[0, 2] == 12
+    # -5 steps: 0 r -5000, |r| >= 4021 and the quotient 0 is stepped UP: +1 mm -> +12 mrad
+    assert odo.firmware_fixed_point([[5, 0]], 8.043, W, alpha_rounding="source")[0, 2] == 12
+    # 3 steps: 3000 < 4021 -> 0 mm -> no turn at all (truncation gives 1000*3/683.655 -> 4)
+    assert odo.firmware_fixed_point([[0, 3]], 8.043, W, alpha_rounding="source")[0, 2] == 0
+    assert odo.firmware_fixed_point([[0, 3]], 8.043, W)[0, 2] == 4
+
+
+def test_fixed_point_source_rounding_on_one_lap_of_a_1_m_circle():
+    # 1 cm updates on a 1 m circle: every update's wheel difference is 6 to 8 steps, which the
+    # source rounds to 1 mm = 12 mrad; 656 updates count 7872 mrad instead of 6283 (+25 %),
+    # and the mirrored right-hand lap counts the same +7872 (the stepped-up quotient of 0).
+    for turn in (2 * math.pi, -2 * math.pi):
+        inc = odo.encoder_increments(odo.plan_wheel_travel([[2000 * math.pi, turn]], W, 10.0), K)
+        diff = np.abs(inc[:, 1] - inc[:, 0])
+        assert len(inc) == 656 and diff.min() >= 6 and diff.max() <= 8
+        out = odo.firmware_fixed_point(inc, K, W, alpha_rounding="source")
+        assert out[-1, 2] == 7872 % 6283
+        assert np.all(np.diff(np.concatenate([[0], out[:, 2]])) % 6283 == 12)
+
+
 def test_fixed_point_returns_integers():
     out = odo.firmware_fixed_point([[10, 12]] * 3, K, W, pose=(1, 2, 3))
     assert out.dtype == np.int64
@@ -330,8 +359,8 @@ def test_fixed_point_returns_integers():
     (lambda: odo.integrate([["a", "b"]], K, W), "increments"),
     (lambda: odo.integrate([[1, 2]], 0.0, W), "steps_per_mm"),
     (lambda: odo.integrate([[1, 2]], -K, W), "steps_per_mm"),
-    (lambda: odo.integrate([[1, 2]], K, 0.0), "wheel_base_mm"),
-    (lambda: odo.integrate([[1, 2]], K, np.inf), "wheel_base_mm"),
+    (lambda: odo.integrate([[1, 2]], K, 0.0), "track_width_mm"),
+    (lambda: odo.integrate([[1, 2]], K, np.inf), "track_width_mm"),
     (lambda: odo.integrate([[1, 2]], K, W, "rk4"), "method"),
     (lambda: odo.integrate([[1, 2]], K, W, pose=(0, 0)), "pose"),
     (lambda: odo.integrate([[1, 2]], K, W, pose=(0, np.nan, 0)), "pose"),
@@ -347,6 +376,11 @@ def test_fixed_point_returns_integers():
     (lambda: odo.firmware_fixed_point([[1, 2]], K, W, pose=(0.5, 0, 0)), "pose"),
     (lambda: odo.firmware_fixed_point([[1, 2]], K, W, carry="yes"), "carry"),
     (lambda: odo.firmware_fixed_point([[2**40, 2]], K, W), "increments"),
+    (lambda: odo.firmware_fixed_point([[1, 2]], K, W, alpha_rounding="round"), "alpha_rounding"),
+    (lambda: odo.firmware_fixed_point([[1, 2]], 8.0435, W, alpha_rounding="source"),
+     "steps_per_mm"),
+    (lambda: odo.firmware_fixed_point([[1, 2]], K, 85.5, alpha_rounding="source"),
+     "track_width_mm"),
     (lambda: odo.plan_wheel_travel([[1.0, 2.0, 3.0]], W, 10.0), "segments"),
     (lambda: odo.plan_wheel_travel([[1.0, 2.0]], W, 0.0), "max_step_mm"),
     (lambda: odo.encoder_increments([1.0, 2.0], K), "travel_mm"),
@@ -376,9 +410,9 @@ def test_exercise_reference_passes_and_stub_says_not_written(name):
 
 
 def test_exercise_mistakes_are_named():
-    def readme_center(n_left, n_right, steps_per_mm, wheel_base_mm):
+    def readme_center(n_left, n_right, steps_per_mm, track_width_mm):
         return ((n_left - n_right) / 2 / steps_per_mm,
-                (n_right - n_left) / steps_per_mm / wheel_base_mm)
+                (n_right - n_left) / steps_per_mm / track_width_mm)
 
     assert "(L + R)" in get("odometry.center_and_turn").check(readme_center).message
 
@@ -388,8 +422,8 @@ def test_exercise_mistakes_are_named():
 
     assert "end" in get("odometry.midpoint_step").check(end_heading).message
 
-    def rounded(n_left, n_right, steps_per_mm, wheel_base_mm):
-        return round(1000 * (n_right - n_left) / (steps_per_mm * wheel_base_mm))
+    def rounded(n_left, n_right, steps_per_mm, track_width_mm):
+        return round(1000 * (n_right - n_left) / (steps_per_mm * track_width_mm))
 
     assert "toward zero" in get("odometry.alpha_mrad").check(rounded).message
 

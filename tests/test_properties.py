@@ -234,7 +234,7 @@ def test_negating_omega_swaps_the_wheels_in_every_unit_system(v, omega, method):
     """SI, encoder units, the README as printed and the firmware's 32-bit integers: a turn to
     the right is the turn to the left with the wheels swapped; the int32 versions exactly,
     overflow and all (two's complement wraps symmetrically but at -2**31)."""
-    base, enc = dd.RADON_ULZER_CONSTANTS.wheel_base_mm, dd.RADON_ULZER_CONSTANTS.steps_per_m
+    base, enc = dd.RADON_ULZER_CONSTANTS.track_width_mm, dd.RADON_ULZER_CONSTANTS.steps_per_m
     for fn in (dd.wheel_speeds_steps, dd.wheel_speeds_steps_as_printed):
         left, right = fn(v, omega, base, enc)
         m_left, m_right = fn(v, -omega, base, enc)

@@ -497,3 +497,26 @@ def test_wheel_commands_straight_vectorised_and_bad_input():
         rv.wheel_commands("fast", 0.1)
     with pytest.raises(ValueError, match="max_corner_angle"):
         rv.wheel_commands(0.1, 0.0, max_corner_angle=2.0)
+
+
+def test_a_geometry_in_metres_and_in_inches_is_the_same_rover():
+    """Each geometry carries its unit; the SI functions convert, so no mix-up is silent."""
+    from wheelkin import unified
+    from wheelkin.sandbox import rover as sandbox_rover
+
+    metric = rover.RoverGeometry(7.254 * 0.0254, 10.5 * 0.0254, 10.5 * 0.0254,
+                                 10.073 * 0.0254, unit="m")
+    for geometry in (rover.OSR_GEOMETRY, metric):
+        cmd = rover.wheel_commands(0.2, 0.004, geometry)
+        # omega x / (v - omega y) for the left front corner at (10.5 in, 7.254 in), by hand
+        x, y = 10.5 * 0.0254, 7.254 * 0.0254
+        assert cmd.steering_angles[0] == pytest.approx(math.atan(0.004 * x / (0.2 - 0.004 * y)))
+        wheels = unified.rover_wheels(geometry, 0.06, radius_in=30.0)
+        assert wheels[0].position == pytest.approx((x, y), abs=1e-15)
+        assert sandbox_rover(geometry).wheels[0].position == pytest.approx((x, y), abs=1e-15)
+    inches = metric.in_unit("in")
+    assert inches.unit == "in" and rover.OSR_GEOMETRY.in_unit("in") is rover.OSR_GEOMETRY
+    for d in ("d1", "d2", "d3", "d4"):
+        assert getattr(inches, d) == pytest.approx(getattr(rover.OSR_GEOMETRY, d), rel=1e-15)
+    with pytest.raises(ValueError, match="unit"):
+        rover.RoverGeometry(1.0, 1.0, 1.0, 1.0, unit="ft")

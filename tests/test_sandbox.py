@@ -23,7 +23,6 @@ from wheelkin.sandbox import (
     RADON_ULZER,
     Trajectory,
     VehicleSpec,
-    Wheel,
     World,
     diff_drive,
     ideal_commands,
@@ -34,6 +33,7 @@ from wheelkin.sandbox import (
 from wheelkin.sandbox.contact import ContactModel, _Warm, dissipation_objective
 from wheelkin.sandbox.sensors import Encoder
 from wheelkin.sandbox.vehicles import GRAVITY, polygon_inertia
+from wheelkin.unified import WheelConstraint
 
 DT = 1 / 240
 INCH = 0.0254
@@ -45,17 +45,24 @@ IDS = ["diff drive", "skid steer", "mecanum", "rover"]
 @pytest.mark.parametrize(
     "make, param",
     [
-        (lambda: Wheel("L", (0, 0.1), radius=-0.02), "radius"),
-        (lambda: Wheel("L", (0, float("nan")), radius=0.02), "position"),
-        (lambda: Wheel("L", (0, 0.1), kind="hover"), "kind"),
-        (lambda: Wheel("M", (0, 0.1), kind="mecanum", roller_angle=0.0), "roller_angle"),
-        (lambda: Wheel("L", (0, 0.1), load_fraction=1.5), "load_fraction"),
+        (lambda: RADON_ULZER.replace(load_fractions=(1.5, -0.25, -0.25)), "load_fractions"),
+        (lambda: RADON_ULZER.replace(load_fractions=(0.5, 0.5)), "load_fractions"),
+        (lambda: RADON_ULZER.replace(load_fractions=(0.5, 0.5, 0.5)), "load_fractions"),
+        (lambda: RADON_ULZER.replace(wheels=("L", "R")), "wheels"),
+        (lambda: RADON_ULZER.replace(wheels=RADON_ULZER.wheels[0]), "wheels"),
+        (lambda: OPEN_SOURCE_ROVER.replace(
+            wheels=OPEN_SOURCE_ROVER.wheels_at([0.1, 0.0, 0.0, 0.0], casters=True)), "steering"),
+        (lambda: OPEN_SOURCE_ROVER.replace(free_rolling=("LM",)), "free_rolling"),
+        (lambda: OPEN_SOURCE_ROVER.replace(free_rolling="LF"), "free_rolling"),
+        (lambda: OPEN_SOURCE_ROVER.wheels_at([0.1, 0.2]), "steering"),
+        (lambda: OPEN_SOURCE_ROVER.wheels_at(None, casters=1), "casters"),
         (lambda: diff_drive(0.1, -0.02), "wheel_radius"),
         (lambda: diff_drive(0.0, 0.02), "track_width"),
         (lambda: diff_drive(0.1, 0.02, caster_load=1.0), "caster_load"),
         (lambda: skid_steer(0.06, -0.05, 0.04), "half_wheelbase"),
         (lambda: mecanum(0.05, 0.15, 0.15, roller_angle=math.pi / 2), "roller_angle"),
-        (lambda: rover(0.18, 0.27, 0.27, float("nan"), 0.06), "d4"),
+        (lambda: rover(wheel_radius=float("nan")), "wheel_radius"),
+        (lambda: rover((7.0, 10.0, 10.0, 10.0)), "geometry"),
         (lambda: RADON_ULZER.replace(mu=0.0), "mu"),
         (lambda: RADON_ULZER.replace(mu=-0.5), "mu"),
         (lambda: RADON_ULZER.replace(mass=0.0), "mass"),
@@ -67,7 +74,7 @@ IDS = ["diff drive", "skid steer", "mecanum", "rover"]
         (lambda: RADON_ULZER.replace(body=((0, 0), (1, 0))), "body"),
         (lambda: OPEN_SOURCE_ROVER.replace(steered_names=("LF", "RF", "LB", "LM")),
          "steered_names"),
-        (lambda: RADON_ULZER.replace(wheels=RADON_ULZER.wheels[:2]), "load_fraction"),
+        (lambda: RADON_ULZER.replace(wheels=RADON_ULZER.wheels[:2]), "load_fractions"),
         (lambda: World(dt=0.0), "dt"),
         (lambda: World(dt=-1 / 240), "dt"),
         (lambda: World(dt=float("nan")), "dt"),
@@ -81,11 +88,18 @@ def test_bad_input_raises_value_error_naming_the_parameter(make, param):
         make()
 
 
-def test_mixing_mecanum_and_conventional_wheels_is_refused():
-    wheels = (Wheel("A", (0.1, 0.1), kind="mecanum", roller_angle=0.7, load_fraction=0.5),
-              Wheel("B", (0.1, -0.1), kind="fixed", load_fraction=0.5))
-    with pytest.raises(ValueError, match="wheels"):
+def test_mixing_swedish_and_conventional_wheels_is_refused():
+    wheels = (WheelConstraint("A", (0.1, 0.1), kind="swedish", roller_angle=0.7),
+              WheelConstraint("B", (0.1, -0.1), kind="fixed"))
+    with pytest.raises(ValueError, match="wheels must not mix"):
         VehicleSpec("odd", 1.0, 0.01, ((-0.1, -0.1), (0.1, -0.1), (0.1, 0.1)), wheels)
+
+
+def test_a_vehicle_whose_wheels_leave_a_motion_free_is_refused():
+    # One fixed wheel: its two rows fix two velocities, the yaw rate about it stays free.
+    wheels = (WheelConstraint("A", (0.0, 0.0), kind="fixed"),)
+    with pytest.raises(ValueError, match="fix all three body velocities"):
+        VehicleSpec("unicycle", 1.0, 0.01, ((-0.1, -0.1), (0.1, -0.1), (0.1, 0.1)), wheels)
 
 
 @pytest.mark.parametrize(
@@ -136,7 +150,11 @@ def test_factories_place_the_wheels_as_documented():
     assert 2 * math.pi * r == pytest.approx(0.113097)
     assert RADON_ULZER.steps_per_rev / (2 * math.pi * r) == pytest.approx(8043, abs=1)
     for spec in ALL:
-        assert sum(w.load_fraction for w in spec.wheels) == pytest.approx(1.0)
+        assert sum(spec.load_fractions) == pytest.approx(1.0)
+        # the static loads carry the weight m g less the casters' share
+        caster_share = sum(f for w, f in zip(spec.wheels, spec.load_fractions, strict=True)
+                           if w.kind == "caster")
+        assert spec.normal_loads.sum() == pytest.approx(spec.mass * 9.81 * (1 - caster_share))
 
 
 def test_polygon_inertia_matches_the_plate_formulas():

@@ -15,7 +15,6 @@ from wheelkin.sandbox import (
     RC_CAR,
     PurePursuitDriver,
     Steering,
-    Wheel,
     World,
     car,
     car_odometry,
@@ -124,7 +123,7 @@ def test_pure_pursuit_follows_a_circle():
     (lambda: Steering("linkage", arm_length=-1), "arm_length"),
     (lambda: front_angles(Steering(), 2.0, L, W), "delta must be in"),
     (lambda: front_angles("ackermann", 0.2, L, W), "steering must be a Steering"),
-    (lambda: Wheel("F", (0, 0), kind="sliding"), "kind must be one of"),
+    (lambda: RC_CAR.replace(free_rolling=("RL",)), "free_rolling must name steered wheels"),
     (lambda: car_odometry(np.zeros((3, 2)), [0.0], L, R_W), "steering must have 2 or 3"),
     (lambda: car_odometry(np.zeros((3, 3)), [0.0, 0.0], L, R_W), "rear_angles must have"),
 ])

@@ -22,14 +22,13 @@ from hypothesis import strategies as st
 from wheelkin import diffdrive, mecanum, rover
 from wheelkin.frames import Twist
 from wheelkin.mecanum import MecanumGeometry
-from wheelkin.rover import OSR_GEOMETRY, RoverGeometry
+from wheelkin.rover import RoverGeometry
 from wheelkin.unified import (
     WheelConstraint,
     admissible_twists,
     body_twist,
     constraint_matrix,
     diff_drive_wheels,
-    from_sandbox,
     mecanum_wheels,
     mobility,
     rolling_matrix,
@@ -241,72 +240,53 @@ def test_a_left_turn_mirrors_a_right_turn():
     np.testing.assert_allclose(left, right[[3, 4, 5, 0, 1, 2]], atol=1e-12)
 
 
-# --- the sandbox's wheels are the same model ------------------------------------------------------
+# --- the sandbox's contact imposes these rows: checked from first principles -----------------
 
-def test_sandbox_contact_rows_are_our_rows():
-    from wheelkin.sandbox import LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER, RADON_ULZER
-    from wheelkin.sandbox.contact import constraint_rows
-
-    steer = (0.3, -0.2, 0.1, -0.4)
-    for spec, steering in ((RADON_ULZER, ()), (LAB_ROBOT, ()), (MECANUM_ROBOT, ()),
-                           (OPEN_SOURCE_ROVER, steer)):
-        J, B, owner = constraint_rows(spec, steering)
-        wheels = from_sandbox(spec, steering if steering else None, casters=False)
-        rows_rolling, rows_sliding = [], []
-        for i, w in enumerate(wheels):
-            mine = np.flatnonzero(owner == i)
-            if w.kind == "swedish":
-                # the sandbox's roller row u^T P, requesting r phi (u . e): ours divided by u . e
-                (k,) = mine
-                rows_rolling.append(J[k] / (B[k, i] / w.radius))
-            else:
-                rows_rolling.append(J[mine[0]])
-                rows_sliding.append(J[mine[1]])
-                assert B[mine[0], i] == pytest.approx(w.radius)
-                assert B[mine[1], i] == 0.0
-        np.testing.assert_allclose(rows_rolling, rolling_matrix(wheels), atol=1e-12)
-        np.testing.assert_allclose(np.reshape(rows_sliding, (-1, 3)), sliding_matrix(wheels),
-                                   atol=1e-12)
-
-
-@SETTINGS
-@given(twist=twists)
-def test_sandbox_ideal_commands_are_our_wheel_rates_and_steering(twist):
+@pytest.mark.parametrize("name", ["diff drive", "skid steer", "mecanum", "rover", "car"])
+def test_sandbox_contact_rows_are_the_contact_velocities_by_hand(name):
+    """J xi, per row, is the velocity of the wheel's contact point (v - w y, vy + w x) along
+    the row's direction, computed here by hand from the angles; B phi is the rim speed r phi
+    along e (r phi (u . e) along a roller axis u, at 90 deg + gamma from e)."""
     from wheelkin.sandbox import (
         LAB_ROBOT,
         MECANUM_ROBOT,
         OPEN_SOURCE_ROVER,
         RADON_ULZER,
-        ideal_commands,
+        RC_CAR,
     )
+    from wheelkin.sandbox.contact import constraint_rows
 
-    for spec in (RADON_ULZER, LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER):
-        sandbox_rates, sandbox_steering = ideal_commands(spec, twist)
-        wheels = steer_for_twist(from_sandbox(spec, casters=False), twist)
-        np.testing.assert_allclose(wheel_rates(wheels, twist), sandbox_rates, atol=1e-9)
-        ours = {w.name: w.steering for w in wheels}
-        for name, angle in zip(spec.steered_names, sandbox_steering, strict=True):
-            assert ours[name] == pytest.approx(angle, abs=1e-12)
-
-
-def test_builders_match_the_sandboxs_vehicles():
-    from wheelkin.sandbox import LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER, RADON_ULZER
-
-    pairs = [
-        (diff_drive_wheels(0.085, RADON_ULZER.wheels[0].radius, caster_offset=0.045),
-         from_sandbox(RADON_ULZER)),
-        (skid_steer_wheels(0.06, 0.05, 0.04), from_sandbox(LAB_ROBOT)),
-        (mecanum_wheels(MecanumGeometry(0.05, 0.15, 0.15)), from_sandbox(MECANUM_ROBOT)),
-        (rover_wheels(OSR_GEOMETRY, 0.06), from_sandbox(OPEN_SOURCE_ROVER)),
-    ]
-    for ours, theirs in pairs:
-        assert [w.name for w in ours] == [w.name for w in theirs]
-        for a, b in zip(ours, theirs, strict=True):
-            assert a.kind == b.kind
-            np.testing.assert_allclose(a.position, b.position, atol=1e-12)
-            assert (a.heading, a.roller_angle, a.steering) == pytest.approx(
-                (b.heading, b.roller_angle, b.steering))
-            assert a.radius == pytest.approx(b.radius)
+    spec, steering = {"diff drive": (RADON_ULZER, ()), "skid steer": (LAB_ROBOT, ()),
+                      "mecanum": (MECANUM_ROBOT, ()),
+                      "rover": (OPEN_SOURCE_ROVER, (0.3, -0.2, 0.1, -0.4)),
+                      "car": (RC_CAR, (0.25, 0.2))}[name]
+    J, B, owner = constraint_rows(spec, steering)
+    xi = np.array([0.3, -0.2, 0.7])
+    phi = np.array([1.5, -2.0, 0.5, 3.0, -1.0, 2.5])[:len(spec.wheel_names)]
+    angle_of = dict(zip(spec.steered_names, steering, strict=True))
+    expected_rows, expected_b = [], []
+    for j, w in enumerate(spec.driven_wheels):
+        x, y = w.position
+        contact = np.array([xi[0] - xi[2] * y, xi[1] + xi[2] * x])
+        psi = w.heading + angle_of.get(w.name, 0.0)
+        e = np.array([math.cos(psi), math.sin(psi)])
+        n = np.array([math.cos(psi + math.pi / 2), math.sin(psi + math.pi / 2)])
+        r = w.radius
+        if w.kind == "swedish":
+            a = psi + math.pi / 2 + w.roller_angle
+            u = np.array([math.cos(a), math.sin(a)])
+            expected_rows.append(u @ contact)
+            expected_b.append(r * phi[j] * (u @ e))
+        elif w.name in spec.free_rolling:
+            expected_rows += [0.0, n @ contact]
+            expected_b += [0.0, 0.0]
+        else:
+            expected_rows += [e @ contact, n @ contact]
+            expected_b += [r * phi[j], 0.0]
+    np.testing.assert_allclose(J @ xi, expected_rows, atol=1e-12)
+    np.testing.assert_allclose(B @ phi, expected_b, atol=1e-12)
+    rows_per_wheel = 1 if spec.is_swedish else 2
+    assert owner.tolist() == [j for j in range(len(phi)) for _ in range(rows_per_wheel)]
 
 
 # --- mobility -----------------------------------------------------------------------------------
@@ -460,21 +440,12 @@ def test_bad_wheels_raise_value_error_naming_the_parameter(kwargs, param):
         (lambda: rover_wheels((7, 10, 10, 10)), "geometry"),
         (lambda: rover_wheels(wheel_radius=0), "wheel_radius"),
         (lambda: rover_wheels(radius_in=10.0), "radius"),
-        (lambda: from_sandbox("rover"), "spec"),
-        (lambda: from_sandbox(_sandbox_rover(), steering=[0.1]), "steering"),
-        (lambda: from_sandbox(_sandbox_rover(), casters=1), "casters"),
         (lambda: WheelConstraint("A", (0, 0)).roller_axis, "roller_axis"),
     ],
 )
 def test_bad_input_raises_value_error_naming_the_parameter(call, param):
     with pytest.raises(ValueError, match=param):
         call()
-
-
-def _sandbox_rover():
-    from wheelkin.sandbox import OPEN_SOURCE_ROVER
-
-    return OPEN_SOURCE_ROVER
 
 
 
@@ -502,6 +473,12 @@ def test_exercise_references_agree_with_hand_calculations():
                                (-np.sin(alpha) * vx + np.cos(alpha) * vy + L * w) / r, atol=1e-12)
     np.testing.assert_allclose(ex.skid_steer_slip(0.3, 2.0, 0.06, 0.05), [0.1, 0.1, -0.1, -0.1],
                                atol=1e-15)
+    # the design exercise, counted by hand: the omni base (3, 0) with 3 motors can do all a
+    # swerve base (1, 2) does; a differential drive (2, 0) all a tricycle (1, 1) does, with 2
+    names = [text.split(":")[0] for text, _, _ in ex.CANDIDATES]
+    assert names[ex.choose_design(3, 0)] == names[ex.choose_design(1, 2)] == "omni base"
+    assert names[ex.choose_design(2, 0)] == names[ex.choose_design(1, 1)] == "differential drive"
+    assert ex.choose_design(3, 1) == -1  # no design reaches four twist directions
 
 
 def test_exercises_pass_their_references_and_name_each_mistake():
@@ -545,6 +522,8 @@ def test_panel_sweeps_without_raising_and_the_animations_have_their_frames():
     np.testing.assert_allclose(twists[-1], [0.0, 0.0, 1.5])
     with pytest.raises(ValueError, match="frames"):
         panels.tour_twists(3)
+    with pytest.raises(ValueError, match="frames"):
+        panels.manoeuvre_animation({"strafe": {}}, frames=41)  # more than a page may hold
 
 
 def test_constraint_view_marks_exactly_the_wheels_that_must_slide():

@@ -1,6 +1,7 @@
 """The live-panel core: one redraw per change, blitting, and the return-None fallback."""
 
 import io
+from pathlib import Path
 
 import ipywidgets as W
 import numpy as np
@@ -8,6 +9,7 @@ import pytest
 from matplotlib.figure import Figure
 from PIL import Image
 
+import wheelkin
 from wheelkin.widgets import Panel, slider_values
 
 
@@ -163,3 +165,14 @@ def test_panel_text_is_legible_at_every_extreme(name):
         assert not found, f"panel {name}:\n" + "\n".join(dict.fromkeys(found))
     finally:
         panel.close()
+
+
+def test_no_figure_of_the_library_is_made_without_a_layout_engine():
+    """A figure with layout="none" gets the book style's constrained layout back from its
+    first save, so a panel's or an animation's frames after the first would move."""
+    src = Path(wheelkin.__file__).parent
+    found = [f"{p.relative_to(src)}:{i}" for p in sorted(src.rglob("*.py"))
+             for i, line in enumerate(p.read_text().splitlines(), 1)
+             if 'layout="none"' in line and "Not ``layout" not in line]
+    assert not found, ("use layout=wheelkin.style.fixed_layout() (a hand-set layout that "
+                       f"survives saving), not layout=\"none\": {found}")

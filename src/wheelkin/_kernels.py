@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 __all__ = ["SERIES_THRESHOLD", "arc_factors", "arc_step", "c_div", "desaturate",
-           "diff_drive_wheel_speeds", "shift_twist", "wrap_angle"]
+           "diff_drive_wheel_speeds", "point_row", "roller_axis", "shift_twist", "wrap_angle"]
 
 _TWO_PI = 2.0 * math.pi
 
@@ -77,6 +77,22 @@ def arc_step(x: Any, y: Any, theta: Any, distance: Any, dtheta: Any) -> tuple[An
     else:
         c, s = np.cos(theta), np.sin(theta)
     return (x + distance * (a * c - b * s), y + distance * (a * s + b * c), theta + dtheta)
+
+
+def point_row(x: float, y: float, dx: float, dy: float) -> tuple[float, float, float]:
+    r"""The row :math:`\mathbf d^T P = (d_x,\ d_y,\ x d_y - y d_x)` with
+    :math:`\mathbf d^T P\,\xi` the velocity along :math:`\mathbf d` of the body point
+    :math:`(x, y)` for the twist :math:`\xi = (v_x, v_y, \omega)`: every wheel constraint row
+    (rolling, sliding, roller) is one of these."""
+    return dx, dy, x * dy - y * dx
+
+
+def roller_axis(angle: float, gamma: float) -> tuple[float, float]:
+    r"""The ground roller's axis :math:`\mathbf u = (-\sin(\psi+\gamma),\ \cos(\psi+\gamma))`
+    of a Swedish wheel rolling along :math:`\psi`: its axle :math:`\mathbf n` turned by
+    :math:`\gamma`."""
+    a = angle + gamma
+    return -math.sin(a), math.cos(a)
 
 
 def c_div(numerator: int, denominator: int) -> int:

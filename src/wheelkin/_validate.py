@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 
@@ -149,3 +150,20 @@ def choice(name: str, value, options: Sequence[str]) -> str:
     if not isinstance(value, str) or value not in options:
         raise ValueError(f"{name} must be one of {', '.join(map(repr, options))}; got {value!r}")
     return value
+
+
+def broadcast(**arrays: Any) -> list[np.ndarray]:
+    """The arrays (already validated) broadcast together; ``ValueError`` naming them and their
+    shapes when they do not broadcast (never numpy's bare "shape mismatch").
+
+    >>> broadcast(x=np.zeros(2), y=np.zeros(3))
+    Traceback (most recent call last):
+    ...
+    ValueError: x and y must have shapes that broadcast together, got x (2,), y (3,)
+    """
+    try:
+        return list(np.broadcast_arrays(*(np.asarray(a) for a in arrays.values())))
+    except ValueError:
+        shapes = ", ".join(f"{name} {np.shape(a)}" for name, a in arrays.items())
+        raise ValueError(f"{' and '.join(arrays)} must have shapes that broadcast together, "
+                         f"got {shapes}") from None

@@ -18,9 +18,19 @@ from __future__ import annotations
 import hashlib
 import html as _html
 import re
+from typing import Any
 
-import matplotlib.pyplot as plt
-from matplotlib.animation import Animation
+try:
+    import matplotlib.pyplot as plt
+    from matplotlib.animation import Animation
+except ModuleNotFoundError as exc:
+    raise ModuleNotFoundError("wheelkin.animation needs matplotlib: install the extra, "
+                              "pip install \".[plot]\" from a checkout") from exc
+
+try:  # IPython comes with the notebook extra; only show() needs it
+    from IPython.display import HTML
+except ImportError:  # pragma: no cover - the plot extra alone
+    HTML = Any
 
 __all__ = ["MAX_BYTES", "show", "to_html"]
 
@@ -196,7 +206,7 @@ def _jshtml_checked(anim: Animation, name: str, **kwargs) -> str:
     return raw
 
 
-def show(anim: Animation, **kwargs):
+def show(anim: Animation, **kwargs: Any) -> HTML:
     """Display ``anim`` in a notebook as a kernel-free player (see :func:`to_html`)."""
     from IPython.display import HTML
 

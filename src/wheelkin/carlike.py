@@ -33,6 +33,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
 
@@ -110,7 +111,7 @@ def _radius(name: str, value) -> np.ndarray:
     return arr
 
 
-def steering_angle(radius, wheelbase):
+def steering_angle(radius: ArrayLike, wheelbase: float) -> float | NDArray[np.float64]:
     r"""The bicycle model's front steering angle for a turning radius of the rear axle.
 
     .. math:: \delta = \arctan\frac{L}{R}
@@ -144,7 +145,7 @@ def steering_angle(radius, wheelbase):
     return _out(np.arctan(L / R) + 0.0)
 
 
-def steering_from_curvature(curvature, wheelbase):
+def steering_from_curvature(curvature: ArrayLike, wheelbase: float) -> float | NDArray[np.float64]:
     r"""The bicycle model's front steering angle for a path curvature of the rear axle.
 
     .. math:: \delta = \arctan(L\,\kappa)
@@ -173,7 +174,8 @@ def steering_from_curvature(curvature, wheelbase):
     return _out(np.arctan(L * k) + 0.0)
 
 
-def ackermann_outer_angle(inner_angle, wheelbase, track_width):
+def ackermann_outer_angle(inner_angle: ArrayLike, wheelbase: float,
+                          track_width: float) -> float | NDArray[np.float64]:
     r"""The outer front wheel's angle that satisfies the Ackermann condition.
 
     .. math:: \cot\delta_o = \cot\delta_i + \frac{W}{L}
@@ -207,7 +209,7 @@ def ackermann_outer_angle(inner_angle, wheelbase, track_width):
     return _out(np.sign(d) * np.arctan(L * t / (L + W * t)) + 0.0)
 
 
-def ackermann_angles(radius, wheelbase, track_width) -> AckermannAngles:
+def ackermann_angles(radius: ArrayLike, wheelbase: float, track_width: float) -> AckermannAngles:
     r"""Left and right front wheel angles of an ideal Ackermann car for a turning radius.
 
     The ICR is on the rear axle line at :math:`(0, R)` (rear-axle midpoint frame); the left
@@ -254,7 +256,8 @@ def ackermann_angles(radius, wheelbase, track_width) -> AckermannAngles:
                            _out(np.arctan(L / (R + W / 2)) + 0.0))
 
 
-def bicycle_twist(speed, steering_angle, wheelbase):
+def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike,
+                  wheelbase: float) -> NDArray[np.float64]:
     r"""Body twist of the rear-axle midpoint of the kinematic bicycle model.
 
     .. math:: v_x = v,\qquad v_y = 0,\qquad \omega = \frac{v\tan\delta}{L}
@@ -285,11 +288,12 @@ def bicycle_twist(speed, steering_angle, wheelbase):
     v = V.finite_array("speed", speed)
     d = _steer("steering_angle", steering_angle)
     L = V.positive("wheelbase", wheelbase)
-    v, d = np.broadcast_arrays(v, d)
+    v, d = V.broadcast(speed=v, steering_angle=d)
     return np.stack([v + 0.0, np.zeros_like(v), v * np.tan(d) / L + 0.0], axis=-1)
 
 
-def tricycle_twist(front_speed, steering_angle, wheelbase):
+def tricycle_twist(front_speed: ArrayLike, steering_angle: ArrayLike,
+                   wheelbase: float) -> NDArray[np.float64]:
     r"""Body twist of the rear-axle midpoint of a tricycle driven by its steered front wheel.
 
     The front wheel rolls at :math:`v_f` along its own direction, at angle :math:`\delta`;
@@ -324,12 +328,13 @@ def tricycle_twist(front_speed, steering_angle, wheelbase):
     if np.any(np.abs(d) > _HALF_PI):
         raise ValueError(f"steering_angle must be in [-pi/2, pi/2] rad, got {steering_angle!r}")
     L = V.positive("wheelbase", wheelbase)
-    v, d = np.broadcast_arrays(v, d)
+    v, d = V.broadcast(speed=v, steering_angle=d)
     vx = np.where(np.abs(np.abs(d) - _HALF_PI) < 1e-15, 0.0, v * np.cos(d))
     return np.stack([vx + 0.0, np.zeros_like(v), v * np.sin(d) / L + 0.0], axis=-1)
 
 
-def side_slip_angle(steering_angle, wheelbase, rear_to_com):
+def side_slip_angle(steering_angle: ArrayLike, wheelbase: float,
+                    rear_to_com: float) -> float | NDArray[np.float64]:
     r"""Side-slip angle :math:`\beta` of a point on the centre line at :math:`l_r` ahead of
     the rear axle.
 
@@ -360,7 +365,8 @@ def side_slip_angle(steering_angle, wheelbase, rear_to_com):
     return _out(np.arctan(lr * np.tan(d) / L) + 0.0)
 
 
-def bicycle_twist_com(speed, steering_angle, wheelbase, rear_to_com) -> CenterOfMassTwist:
+def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, wheelbase: float,
+                      rear_to_com: float) -> CenterOfMassTwist:
     r"""Body twist at the centre of mass (:math:`l_r` ahead of the rear axle), given its speed.
 
     The velocity of the centre of mass makes the side-slip angle :math:`\beta`
@@ -398,13 +404,14 @@ def bicycle_twist_com(speed, steering_angle, wheelbase, rear_to_com) -> CenterOf
     beta = np.asarray(side_slip_angle(steering_angle, wheelbase, rear_to_com))
     d = np.asarray(steering_angle, dtype=float)
     L = float(wheelbase)
-    v, beta, d = np.broadcast_arrays(v, beta, d)
+    v, d, beta = V.broadcast(speed=v, steering_angle=d, side_slip=beta)
     cb = np.cos(beta)
     return CenterOfMassTwist(_out(v * cb + 0.0), _out(v * np.sin(beta) + 0.0),
                              _out(v * cb * np.tan(d) / L + 0.0), _out(beta + 0.0))
 
 
-def minimum_radius(max_steering_angle, wheelbase, track_width=0.0):
+def minimum_radius(max_steering_angle: ArrayLike, wheelbase: float,
+                   track_width: float = 0.0) -> float | NDArray[np.float64]:
     r"""Smallest turning radius of the rear-axle midpoint for a steering limit.
 
     With the limit on the inner front wheel of an Ackermann car (its ICR on the rear axle
@@ -444,7 +451,7 @@ def minimum_radius(max_steering_angle, wheelbase, track_width=0.0):
     return _out(L / np.tan(d) + W / 2)
 
 
-def pure_pursuit_curvature(x, y):
+def pure_pursuit_curvature(x: ArrayLike, y: ArrayLike) -> float | NDArray[np.float64]:
     r"""Curvature of the circle through the rear-axle midpoint, tangent to the heading, that
     passes through the look-ahead point ``(x, y)`` (rear-axle frame).
 
@@ -473,7 +480,7 @@ def pure_pursuit_curvature(x, y):
     """
     px = V.finite_array("x", x)
     py = V.finite_array("y", y)
-    px, py = np.broadcast_arrays(px, py)
+    px, py = V.broadcast(x=px, y=py)
     d2 = px * px + py * py
     if np.any(d2 == 0):
         raise ValueError("(x, y) must not be the origin (the look-ahead point is where the "
@@ -512,7 +519,8 @@ def _follower(driver, W, a, b, tie):
     return psi - (math.pi - b)
 
 
-def linkage_angles(inner_angle, track_width, arm_length, arm_angle) -> LinkageAngles:
+def linkage_angles(inner_angle: ArrayLike, track_width: float, arm_length: float,
+                   arm_angle: float) -> LinkageAngles:
     r"""Front wheel angles of a trapezoidal (Jeantaud) steering linkage.
 
     Kingpins at :math:`(0, \pm W/2)`; each carries a steering arm of length :math:`a`
@@ -564,7 +572,8 @@ def linkage_angles(inner_angle, track_width, arm_length, arm_angle) -> LinkageAn
     return LinkageAngles(_out(left + 0.0), _out(right + 0.0))
 
 
-def linkage_error(inner_angle, wheelbase, track_width, arm_length, arm_angle):
+def linkage_error(inner_angle: ArrayLike, wheelbase: float, track_width: float, arm_length: float,
+                  arm_angle: float) -> float | NDArray[np.float64]:
     r"""The linkage's Ackermann error: its outer wheel angle minus the Ackermann one.
 
     .. math:: e(\delta_i) = \delta_o^{link}(\delta_i) - \delta_o^{Ack}(\delta_i)
@@ -602,7 +611,7 @@ def linkage_error(inner_angle, wheelbase, track_width, arm_length, arm_angle):
     return _out(outer - np.asarray(ackermann_outer_angle(d, L, track_width)) + 0.0)
 
 
-def jeantaud_arm_angle(wheelbase, track_width):
+def jeantaud_arm_angle(wheelbase: float, track_width: float) -> float:
     r"""The classic rule's arm angle: the arms' lines meet at the rear axle's midpoint.
 
     .. math:: \tan\beta_J = \frac{W}{2L}
@@ -619,8 +628,9 @@ def jeantaud_arm_angle(wheelbase, track_width):
     return math.atan2(W / 2, L)
 
 
-def optimal_arm_angle(wheelbase, track_width, arm_length, max_inner_angle, *,
-                      samples: int = 181, tolerance: float = 1e-7) -> ArmAngle:
+def optimal_arm_angle(wheelbase: float, track_width: float, arm_length: float,
+                      max_inner_angle: float, *, samples: int = 181,
+                      tolerance: float = 1e-7) -> ArmAngle:
     r"""The arm angle that minimises the worst Ackermann error over a steering range.
 
     Minimises :math:`\max_{\delta_i \in [0, \delta_{max}]} |e(\delta_i)|`

@@ -53,7 +53,7 @@ from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _kernels
 from wheelkin import _validate as _v
@@ -101,14 +101,14 @@ INT32_METHODS = ("readme_order", "firmware", "corrected", "q16")
 
 @dataclass(frozen=True)
 class DiffDriveConstants:
-    """The integer constants a differential-drive firmware computes with.
+    r"""The integer constants a differential-drive firmware computes with.
 
     Parameters
     ----------
-    wheel_base_mm : int
+    track_width_mm : int
         Track width :math:`W`, wheel centre to wheel centre, in millimetres (> 0).
     steps_per_m : int
-        :math:`\\mathrm{ENC}`, encoder steps per metre of wheel travel (> 0).
+        :math:`\mathrm{ENC}`, encoder steps per metre of wheel travel (> 0).
 
     Examples
     --------
@@ -118,11 +118,11 @@ class DiffDriveConstants:
     124.33
     """
 
-    wheel_base_mm: int
+    track_width_mm: int
     steps_per_m: int
 
     def __post_init__(self) -> None:
-        for name in ("wheel_base_mm", "steps_per_m"):
+        for name in ("track_width_mm", "steps_per_m"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | np.integer) or value <= 0:
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
@@ -130,18 +130,18 @@ class DiffDriveConstants:
     @property
     def track_width(self) -> float:
         """:math:`W` in metres."""
-        return self.wheel_base_mm * 1e-3
+        return self.track_width_mm * 1e-3
 
     @property
     def metres_per_step(self) -> float:
-        """Wheel travel per encoder step, in metres (:math:`1/\\mathrm{ENC}`)."""
+        r"""Wheel travel per encoder step, in metres (:math:`1/\mathrm{ENC}`)."""
         return 1.0 / self.steps_per_m
 
 
 #: The Radon Ulzer robot (Pololu Zumo 32U4) as its firmware sees it: W = 85 mm,
 #: ENC = 8043 steps/m (12 counts per motor revolution x 75.81 / 0.113097 m = 8043.7,
 #: truncated by the firmware's integer arithmetic).
-RADON_ULZER_CONSTANTS = DiffDriveConstants(wheel_base_mm=85, steps_per_m=RADON_ULZER_STEPS_PER_M)
+RADON_ULZER_CONSTANTS = DiffDriveConstants(track_width_mm=85, steps_per_m=RADON_ULZER_STEPS_PER_M)
 
 
 # --------------------------------------------------------------------------------------------
@@ -153,13 +153,8 @@ def _out(arr: np.ndarray):
 
 
 def _broadcast(**arrays) -> list[np.ndarray]:
-    checked = {name: _v.finite_array(name, value) for name, value in arrays.items()}
-    try:
-        return list(np.broadcast_arrays(*checked.values()))
-    except ValueError:
-        shapes = ", ".join(f"{name} {a.shape}" for name, a in checked.items())
-        raise ValueError(f"{' and '.join(checked)} must have shapes that broadcast together, "
-                         f"got {shapes}") from None
+    return _v.broadcast(**{name: _v.finite_array(name, value)
+                           for name, value in arrays.items()})
 
 
 # --------------------------------------------------------------------------------------------
@@ -353,12 +348,14 @@ def skid_steer_body_twist(fl: ArrayLike, fr: ArrayLike, rl: ArrayLike, rr: Array
 # Encoder units, exact (floats)
 # --------------------------------------------------------------------------------------------
 
-def _firmware_constants(wheel_base_mm, steps_per_m) -> tuple[float, float]:
-    return (_v.positive("wheel_base_mm", wheel_base_mm),
+def _firmware_constants(track_width_mm, steps_per_m) -> tuple[float, float]:
+    return (_v.positive("track_width_mm", track_width_mm),
             _v.positive("steps_per_m", steps_per_m))
 
 
-def wheel_speeds_steps(v_steps_per_s, omega_mrad_per_s, wheel_base_mm, steps_per_m):
+def wheel_speeds_steps(
+        v_steps_per_s: ArrayLike, omega_mrad_per_s: ArrayLike, track_width_mm: float,
+        steps_per_m: float) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
     r"""Wheel speeds in encoder steps/s from a twist in the firmware's units (exact, floats).
 
     .. math:: v_L = v - \omega \, \frac{W}{2} \, \frac{\mathrm{ENC}}{10^6}, \qquad
@@ -374,7 +371,7 @@ def wheel_speeds_steps(v_steps_per_s, omega_mrad_per_s, wheel_base_mm, steps_per
         Forward speed of the axle midpoint, steps/s.
     omega_mrad_per_s : float or array_like
         Yaw rate, mrad/s, counter-clockwise +. Broadcasts with ``v_steps_per_s``.
-    wheel_base_mm : float
+    track_width_mm : float
         :math:`W`, mm (> 0).
     steps_per_m : float
         ENC, encoder steps per metre (> 0).
@@ -394,12 +391,14 @@ def wheel_speeds_steps(v_steps_per_s, omega_mrad_per_s, wheel_base_mm, steps_per
     658.1725 1341.8275
     """
     v_arr, w_arr = _broadcast(v_steps_per_s=v_steps_per_s, omega_mrad_per_s=omega_mrad_per_s)
-    w_mm, enc = _firmware_constants(wheel_base_mm, steps_per_m)
+    w_mm, enc = _firmware_constants(track_width_mm, steps_per_m)
     turn = w_arr * (0.5 * w_mm * enc / 1e6)
     return _out(v_arr - turn), _out(v_arr + turn)
 
 
-def body_twist_steps(left, right, wheel_base_mm, steps_per_m):
+def body_twist_steps(
+        left: ArrayLike, right: ArrayLike, track_width_mm: float,
+        steps_per_m: float) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
     r"""Twist in the firmware's units from wheel speeds in steps/s; inverse of
     :func:`wheel_speeds_steps`.
 
@@ -410,7 +409,7 @@ def body_twist_steps(left, right, wheel_base_mm, steps_per_m):
     ----------
     left, right : float or array_like
         Left and right wheel speeds :math:`v_L, v_R`, steps/s (broadcast together).
-    wheel_base_mm : float
+    track_width_mm : float
         :math:`W`, mm (> 0).
     steps_per_m : float
         ENC, steps/m (> 0).
@@ -427,12 +426,13 @@ def body_twist_steps(left, right, wheel_base_mm, steps_per_m):
     1000.0000 1000.0000
     """
     l_arr, r_arr = _broadcast(left=left, right=right)
-    w_mm, enc = _firmware_constants(wheel_base_mm, steps_per_m)
+    w_mm, enc = _firmware_constants(track_width_mm, steps_per_m)
     return _out(0.5 * (l_arr + r_arr)), _out((r_arr - l_arr) * 1e6 / (w_mm * enc))
 
 
-def wheel_speeds_steps_as_printed(v_linear_steps_per_s, omega_mrad_per_s, wheel_base_mm,
-                                  steps_per_m):
+def wheel_speeds_steps_as_printed(
+        v_linear_steps_per_s: ArrayLike, omega_mrad_per_s: ArrayLike, track_width_mm: float,
+        steps_per_m: float) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
     r"""The firmware README's wheel-speed formula, as printed. **Wrong**: kept to show the error.
 
     .. math:: v_{L,R} = \frac{v_{Linear}}{2} \mp
@@ -449,7 +449,7 @@ def wheel_speeds_steps_as_printed(v_linear_steps_per_s, omega_mrad_per_s, wheel_
         steps/s.
     omega_mrad_per_s : float or array_like
         Yaw rate, mrad/s, counter-clockwise +.
-    wheel_base_mm, steps_per_m : float
+    track_width_mm, steps_per_m : float
         :math:`W` (mm) and ENC (steps/m), both > 0.
 
     Returns
@@ -466,7 +466,7 @@ def wheel_speeds_steps_as_printed(v_linear_steps_per_s, omega_mrad_per_s, wheel_
     """
     v_arr, w_arr = _broadcast(v_linear_steps_per_s=v_linear_steps_per_s,
                               omega_mrad_per_s=omega_mrad_per_s)
-    w_mm, enc = _firmware_constants(wheel_base_mm, steps_per_m)
+    w_mm, enc = _firmware_constants(track_width_mm, steps_per_m)
     turn = w_arr * w_mm / (2 * 1000) * enc / 1000
     return _out(v_arr / 2 - turn), _out(v_arr / 2 + turn)
 
@@ -475,7 +475,7 @@ def wheel_speeds_steps_as_printed(v_linear_steps_per_s, omega_mrad_per_s, wheel_
 # Integer arithmetic, as a microcontroller does it
 # --------------------------------------------------------------------------------------------
 
-def wrap_int(values, bits: int = 32):
+def wrap_int(values: ArrayLike, bits: int = 32) -> int | NDArray[np.int64]:
     """Two's-complement wraparound of integers to ``bits`` bits, as a C signed integer wraps.
 
     (Signed overflow is undefined behaviour in the C standard; on the microcontrollers this
@@ -511,7 +511,7 @@ def wrap_int(values, bits: int = 32):
     return int(out) if out.ndim == 0 else out
 
 
-def c_divide(numerator, denominator):
+def c_divide(numerator: ArrayLike, denominator: ArrayLike) -> int | NDArray[np.int64]:
     """Integer division truncating toward zero, as C's ``/`` on integers does.
 
     Python's ``//`` floors instead: ``-7 // 2 == -4`` but C gives ``-7 / 2 == -3``.
@@ -594,7 +594,7 @@ class FixedPointWheelSpeeds(NamedTuple):
     overflow: bool | np.ndarray
 
 
-def q16_turn_factor(wheel_base_mm: int, steps_per_m: int) -> int:
+def q16_turn_factor(track_width_mm: int, steps_per_m: int) -> int:
     r"""The turn term's constant in Q16 fixed point: :math:`K = \mathrm{round}\!\left(2^{16}
     \, \frac{W \, \mathrm{ENC}}{2 \cdot 10^6}\right)`.
 
@@ -607,7 +607,7 @@ def q16_turn_factor(wheel_base_mm: int, steps_per_m: int) -> int:
     >>> q16_turn_factor(85, 8043)
     22402
     """
-    w = _positive_int("wheel_base_mm", wheel_base_mm)
+    w = _positive_int("track_width_mm", track_width_mm)
     enc = _positive_int("steps_per_m", steps_per_m)
     num = w * enc * (1 << 16)
     den = 2 * 10**6
@@ -620,7 +620,7 @@ def _positive_int(name: str, value) -> int:
     return int(value)
 
 
-def int32_omega_limit(wheel_base_mm: int, steps_per_m: int) -> int:
+def int32_omega_limit(track_width_mm: int, steps_per_m: int) -> int:
     r"""Largest :math:`|\omega|` (whole mrad/s) for which :math:`\omega \, W \, \mathrm{ENC}`
     fits in a signed 32-bit integer.
 
@@ -634,12 +634,13 @@ def int32_omega_limit(wheel_base_mm: int, steps_per_m: int) -> int:
     >>> int32_omega_limit(85, 8043)   # 3.141 rad/s: the Radon Ulzer cannot turn faster than pi
     3141
     """
-    w = _positive_int("wheel_base_mm", wheel_base_mm)
+    w = _positive_int("track_width_mm", track_width_mm)
     enc = _positive_int("steps_per_m", steps_per_m)
     return INT32_MAX // (w * enc)
 
 
-def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int = 85,
+def wheel_speeds_steps_int32(v_steps_per_s: ArrayLike, omega_mrad_per_s: ArrayLike,
+                             track_width_mm: int = 85,
                              steps_per_m: int = RADON_ULZER_STEPS_PER_M, *,
                              method: str = "firmware") -> FixedPointWheelSpeeds:
     r"""Wheel speeds (steps/s) computed in 32-bit integers, as the firmware's C code does.
@@ -678,7 +679,7 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
         Forward speed set point, steps/s, whole numbers in [-32768, 32767].
     omega_mrad_per_s : int or array_like of int
         Yaw-rate set point, mrad/s, whole numbers in [-32768, 32767]; broadcasts with ``v``.
-    wheel_base_mm : int
+    track_width_mm : int
         :math:`W`, mm (positive integer). Default: the Radon Ulzer's 85 mm.
     steps_per_m : int
         ENC, steps/m (positive integer). Default: the Radon Ulzer's 8043.
@@ -711,10 +712,10 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
     except ValueError:
         raise ValueError("v_steps_per_s and omega_mrad_per_s must have shapes that broadcast "
                          f"together, got {v_int.shape} and {w_int.shape}") from None
-    base = _positive_int("wheel_base_mm", wheel_base_mm)
+    base = _positive_int("track_width_mm", track_width_mm)
     enc = _positive_int("steps_per_m", steps_per_m)
     if base > INT32_MAX or enc > INT32_MAX:
-        raise ValueError("wheel_base_mm and steps_per_m must fit in int32")
+        raise ValueError("track_width_mm and steps_per_m must fit in int32")
 
     shape = v_int.shape
     lefts, rights, flags = [], [], []
@@ -761,7 +762,7 @@ def wheel_speeds_steps_int32(v_steps_per_s, omega_mrad_per_s, wheel_base_mm: int
 # Speedometer
 # --------------------------------------------------------------------------------------------
 
-def speed_resolution(window, steps_per_m):
+def speed_resolution(window: ArrayLike, steps_per_m: float) -> float | NDArray[np.float64]:
     r"""Speed resolution of counting encoder steps over a time window: one step per window.
 
     .. math:: \Delta v = \frac{1}{T \, \mathrm{ENC}} \quad \text{m/s}
@@ -790,7 +791,8 @@ def speed_resolution(window, steps_per_m):
     return _out(_v.finite_result("window and steps_per_m", out))
 
 
-def time_to_count(min_steps, speed, steps_per_m):
+def time_to_count(min_steps: float, speed: ArrayLike,
+                  steps_per_m: float) -> float | NDArray[np.float64]:
     r"""Time a wheel at ``speed`` takes to turn ``min_steps`` encoder steps.
 
     .. math:: T_{min} = \frac{m}{\mathrm{ENC} \, |v|}
@@ -823,8 +825,10 @@ def time_to_count(min_steps, speed, steps_per_m):
     return _out(_v.finite_result("speed and steps_per_m", out))
 
 
-def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None, *,
-                      return_updates: bool = False):
+def speed_from_counts(
+        counts: ArrayLike, times: ArrayLike, window: float, min_steps: int = 0,
+        timeout: float | None = None, *, return_updates: bool = False,
+) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.bool_]]:
     r"""Wheel speed (steps/s) from cumulative encoder counts, as a firmware speedometer does.
 
     The estimator keeps an *anchor* sample :math:`a` (where it last made an estimate). At each
@@ -838,9 +842,12 @@ def speed_from_counts(counts, times, window, min_steps: int = 0, timeout=None, *
 
     - ``min_steps=0``: a fixed window (gate time) :math:`T`. Resolution one step per window,
       :math:`1/T` steps/s (:func:`speed_resolution`), however slow the wheel.
-    - ``window=0, min_steps=m``: the Radon Ulzer firmware's scheme (it waits for 6 steps):
-      every estimate rests on at least :math:`m` steps, so its relative error stays below
-      about :math:`1/m`, and the window stretches at low speed (:func:`time_to_count`).
+    - ``window=0, min_steps=m``: a minimum step count: every estimate rests on at least
+      :math:`m` steps, so its relative error stays below about :math:`1/m`, and the window
+      stretches at low speed (:func:`time_to_count`). The Radon Ulzer firmware waits for 6
+      steps too, but it reads the counts on every pass of its main loop and stamps them in
+      whole milliseconds, so at speed its time stamps, not the count, limit it; sampled
+      every 10 ms, this function is a different scheme.
 
     Parameters
     ----------

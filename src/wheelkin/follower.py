@@ -31,7 +31,7 @@ counter-clockwise. Wheel order FL, FR, RL, RR; the left side is the wheels at y 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import NamedTuple, Protocol, runtime_checkable
 
@@ -160,7 +160,7 @@ def _pose3(name: str, pose: ArrayLike) -> tuple[float, float, float]:
 
 
 class PathFollower:
-    """A feedback follower for a plan: pure pursuit on straights and arcs, turns on heading.
+    r"""A feedback follower for a plan: pure pursuit on straights and arcs, turns on heading.
 
     Given a pose estimate, :meth:`command` returns the body twist (v, omega) to drive the
     current segment, and moves on when the segment is done:
@@ -168,12 +168,12 @@ class PathFollower:
     - straight or arc: the progress s along the segment is the projection of the position on
       it; the goal point ("carrot") lies ``lookahead`` ahead of it on the segment (beyond the
       end, on the end tangent). In the robot's frame the carrot is at (c_x, c_y), and pure
-      pursuit drives the circle through it, :math:`\\kappa = 2 c_y / (c_x^2 + c_y^2)`,
-      :math:`\\omega = v\\kappa` :cite:p:`corke2017`. If the carrot is behind the robot, it
+      pursuit drives the circle through it, :math:`\kappa = 2 c_y / (c_x^2 + c_y^2)`,
+      :math:`\omega = v\kappa` :cite:p:`corke2017`. If the carrot is behind the robot, it
       first turns in place toward it. Before a turn in place and at the goal, the speed falls
       as ``approach_gain`` times the distance left (never below ``min_speed``), so the robot
       stops on the waypoint. The segment is done when s reaches its length.
-    - turn in place: :math:`\\omega = \\mathrm{clip}(k_\\theta e, \\pm\\omega_{max})` on the
+    - turn in place: :math:`\omega = \mathrm{clip}(k_\theta e, \pm\omega_{max})` on the
       heading error e (wrapped), at least ``min_turn_rate`` in size; done when
       :math:`|e|` < ``heading_tolerance``.
 
@@ -186,9 +186,9 @@ class PathFollower:
     lookahead : float
         Distance of the carrot ahead of the projection (m), > 0.
     heading_gain : float
-        :math:`k_\\theta` (1/s), > 0, for turns in place.
+        :math:`k_\theta` (1/s), > 0, for turns in place.
     max_turn_rate : float
-        :math:`\\omega_{max}` (rad/s), > 0.
+        :math:`\omega_{max}` (rad/s), > 0.
     min_turn_rate : float
         Smallest commanded turn rate in a turn in place (rad/s), >= 0.
     heading_tolerance : float
@@ -212,8 +212,8 @@ class PathFollower:
     (1, False)
     """
 
-    def __init__(self, segments, *, speed: float = 0.3, lookahead: float = 0.15,
-                 heading_gain: float = 4.0, max_turn_rate: float = 2.0,
+    def __init__(self, segments: Segment | Iterable[Segment], *, speed: float = 0.3,
+                 lookahead: float = 0.15, heading_gain: float = 4.0, max_turn_rate: float = 2.0,
                  min_turn_rate: float = 0.2, heading_tolerance: float = 0.01,
                  approach_gain: float = 2.0, min_speed: float = 0.02) -> None:
         self.segments = validate_segments(segments)
@@ -324,7 +324,7 @@ class _Sides:
 
 
 class ScheduleController:
-    """Play an open-loop schedule on a sandbox skid steer, as the lab does.
+    r"""Play an open-loop schedule on a sandbox skid steer, as the lab does.
 
     A controller for ``wheelkin.sandbox.World.run``: called before each step with the time
     ``t``, it sets the left (FL, RL) and right (FR, RR) wheel rates of the current command.
@@ -343,7 +343,7 @@ class ScheduleController:
         that the wheels turn exactly as scheduled whatever the step. ``"encoders"``: each
         command is held until the encoders say its wheels have turned as planned (the mean
         of the outer side's wheels, or of all wheels on a straight leg, has turned
-        :math:`|\\dot\\varphi_{outer}|\\,t`), checked every ``period`` seconds.
+        :math:`|\dot\varphi_{outer}|\,t`), checked every ``period`` seconds.
     period : float
         Control period (s), > 0; used by ``switch="encoders"``.
 

@@ -1,20 +1,20 @@
-"""Frames: poses, twists, the instantaneous centre of rotation, and each source's frame.
+r"""Frames: poses, twists, the instantaneous centre of rotation, and each source's frame.
 
 Our frame (REP-103, :cite:`rep103`)
 -----------------------------------
 Body frame: x forward, y left, z up; the reference point is the origin of the body frame.
-World frame: x east, y north, z up. A pose is :math:`(x, y, \\theta)` in the world frame, in
-metres and radians, with the heading :math:`\\theta` measured counter-clockwise from world +x
-and wrapped to :math:`(-\\pi, \\pi]` where a wrapped angle is meant. A twist is
-:math:`(v_x, v_y, \\omega)` in the body frame, in m/s and rad/s, with :math:`\\omega`
+World frame: x east, y north, z up. A pose is :math:`(x, y, \theta)` in the world frame, in
+metres and radians, with the heading :math:`\theta` measured counter-clockwise from world +x
+and wrapped to :math:`(-\pi, \pi]` where a wrapped angle is meant. A twist is
+:math:`(v_x, v_y, \omega)` in the body frame, in m/s and rad/s, with :math:`\omega`
 counter-clockwise positive. A positive turning radius :math:`R` is a left turn.
 
 The velocity of a point :math:`p = (p_x, p_y)` fixed to the body is
 
-.. math:: \\dot p = v + \\omega \\times p = (v_x - \\omega p_y,\\; v_y + \\omega p_x),
+.. math:: \dot p = v + \omega \times p = (v_x - \omega p_y,\; v_y + \omega p_x),
 
 which vanishes at the instantaneous centre of rotation (ICR)
-:math:`p_{\\mathrm{ICR}} = (-v_y / \\omega,\\; v_x / \\omega)` when :math:`\\omega \\ne 0`.
+:math:`p_{\mathrm{ICR}} = (-v_y / \omega,\; v_x / \omega)` when :math:`\omega \ne 0`.
 
 The sources' frames
 -------------------
@@ -58,7 +58,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _kernels
 from wheelkin import _validate as v
@@ -132,7 +132,7 @@ class Pose:
         return np.array([self.x, self.y, self.theta])
 
     @classmethod
-    def from_array(cls, values) -> Pose:
+    def from_array(cls, values: ArrayLike) -> Pose:
         """A Pose from an array_like ``[x, y, theta]`` of shape (3,)."""
         arr = v.shaped("pose", values, (3,))
         if arr.ndim != 1:
@@ -165,7 +165,7 @@ class Twist:
         return np.array([self.vx, self.vy, self.omega])
 
     @classmethod
-    def from_array(cls, values) -> Twist:
+    def from_array(cls, values: ArrayLike) -> Twist:
         """A Twist from an array_like ``[vx, vy, omega]`` of shape (3,)."""
         arr = v.shaped("twist", values, (3,))
         if arr.ndim != 1:
@@ -223,11 +223,11 @@ def _no_negative_zero(a):
 # --------------------------------------------------------------------------------------------
 
 
-def wrap_angle(angle):
-    """Wrap an angle (rad) to :math:`(-\\pi, \\pi]`; vectorised.
+def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
+    r"""Wrap an angle (rad) to :math:`(-\pi, \pi]`; vectorised.
 
-    An angle already in :math:`(-\\pi, \\pi]` is returned unchanged (bit for bit), so wrapping
-    is idempotent; :math:`-\\pi` maps to :math:`\\pi`.
+    An angle already in :math:`(-\pi, \pi]` is returned unchanged (bit for bit), so wrapping
+    is idempotent; :math:`-\pi` maps to :math:`\pi`.
 
     Parameters
     ----------
@@ -246,7 +246,7 @@ def wrap_angle(angle):
 
 
 def fold_half_turn(angle: float) -> tuple[float, float]:
-    """A wheel's steering ``angle`` folded into :math:`(-\\pi/2, \\pi/2]`, and the sign its
+    r"""A wheel's steering ``angle`` folded into :math:`(-\pi/2, \pi/2]`, and the sign its
     rolling rate takes: a wheel turned half a turn rolls the same line backwards.
 
     Used wherever a steered wheel is aimed along a direction (the sandbox's ideal commands,
@@ -268,15 +268,15 @@ def fold_half_turn(angle: float) -> tuple[float, float]:
     return a, 1.0
 
 
-def point_velocity(twist, point):
-    """Velocity (m/s, body frame) of a point fixed to the body: :math:`v + \\omega \\times p`.
+def point_velocity(twist: Twist | ArrayLike, point: ArrayLike) -> NDArray[np.float64]:
+    r"""Velocity (m/s, body frame) of a point fixed to the body: :math:`v + \omega \times p`.
 
-    .. math:: \\dot p = (v_x - \\omega p_y,\\; v_y + \\omega p_x)
+    .. math:: \dot p = (v_x - \omega p_y,\; v_y + \omega p_x)
 
     Parameters
     ----------
     twist : Twist or array_like, shape (3,)
-        The body's twist :math:`(v_x, v_y, \\omega)`.
+        The body's twist :math:`(v_x, v_y, \omega)`.
     point : array_like, shape (..., 2)
         Point(s) :math:`p` in the body frame, metres.
 
@@ -303,22 +303,22 @@ def _twist_columns(name: str, twist):
     return arr[..., 0], arr[..., 1], arr[..., 2]
 
 
-def icr(twist) -> tuple[float, float] | None:
-    """The instantaneous centre of rotation of a planar twist, in the body frame (m).
+def icr(twist: Twist | ArrayLike) -> tuple[float, float] | None:
+    r"""The instantaneous centre of rotation of a planar twist, in the body frame (m).
 
-    .. math:: p_{\\mathrm{ICR}} = \\left(-\\frac{v_y}{\\omega},\\; \\frac{v_x}{\\omega}\\right)
+    .. math:: p_{\mathrm{ICR}} = \left(-\frac{v_y}{\omega},\; \frac{v_x}{\omega}\right)
 
-    the one point of the body (extended) whose velocity :math:`v + \\omega \\times p` is zero.
+    the one point of the body (extended) whose velocity :math:`v + \omega \times p` is zero.
 
     Parameters
     ----------
     twist : Twist or array_like, shape (3,)
-        :math:`(v_x, v_y, \\omega)` in m/s and rad/s.
+        :math:`(v_x, v_y, \omega)` in m/s and rad/s.
 
     Returns
     -------
     (float, float) or None
-        ``(x, y)`` of the ICR; ``None`` when :math:`\\omega = 0` (a pure translation: the ICR is
+        ``(x, y)`` of the ICR; ``None`` when :math:`\omega = 0` (a pure translation: the ICR is
         at infinity, perpendicular to :math:`(v_x, v_y)`; at rest it is undefined). For arrays
         of twists use :func:`icr_array`.
 
@@ -338,10 +338,10 @@ def icr(twist) -> tuple[float, float] | None:
     return (_no_negative_zero(-twist.vy / twist.omega), _no_negative_zero(twist.vx / twist.omega))
 
 
-def icr_array(twists) -> np.ndarray:
-    """Vectorised :func:`icr`: shape (..., 3) twists to shape (..., 2) ICRs (m).
+def icr_array(twists: ArrayLike) -> np.ndarray:
+    r"""Vectorised :func:`icr`: shape (..., 3) twists to shape (..., 2) ICRs (m).
 
-    Where :math:`\\omega = 0` both coordinates are ``inf`` (the ICR is at infinity).
+    Where :math:`\omega = 0` both coordinates are ``inf`` (the ICR is at infinity).
 
     Examples
     --------
@@ -363,34 +363,34 @@ def icr_array(twists) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 
 
-def se2_exp(twist, dt):
-    """The body-frame displacement after holding ``twist`` constant for ``dt`` seconds.
+def se2_exp(twist: Twist | ArrayLike, dt: float) -> Pose | NDArray[np.float64]:
+    r"""The body-frame displacement after holding ``twist`` constant for ``dt`` seconds.
 
     Exact (the body moves on a circular arc about the ICR, or straight when
-    :math:`\\omega = 0`). With :math:`\\varphi = \\omega\\,\\Delta t`:
+    :math:`\omega = 0`). With :math:`\varphi = \omega\,\Delta t`:
 
     .. math::
-        \\Delta x = \\Delta t \\left(v_x \\frac{\\sin\\varphi}{\\varphi}
-                    - v_y \\frac{1-\\cos\\varphi}{\\varphi}\\right),\\quad
-        \\Delta y = \\Delta t \\left(v_x \\frac{1-\\cos\\varphi}{\\varphi}
-                    + v_y \\frac{\\sin\\varphi}{\\varphi}\\right),\\quad
-        \\Delta\\theta = \\varphi
+        \Delta x = \Delta t \left(v_x \frac{\sin\varphi}{\varphi}
+                    - v_y \frac{1-\cos\varphi}{\varphi}\right),\quad
+        \Delta y = \Delta t \left(v_x \frac{1-\cos\varphi}{\varphi}
+                    + v_y \frac{\sin\varphi}{\varphi}\right),\quad
+        \Delta\theta = \varphi
 
-    (the fractions tend to 1 and 0 as :math:`\\varphi \\to 0`; they come from
+    (the fractions tend to 1 and 0 as :math:`\varphi \to 0`; they come from
     :func:`wheelkin._kernels.arc_factors`, the library's one small-angle strategy, within a
     few units in the last place of the exact values).
 
     Parameters
     ----------
     twist : Twist or array_like, shape (..., 3)
-        :math:`(v_x, v_y, \\omega)` in m/s and rad/s.
+        :math:`(v_x, v_y, \omega)` in m/s and rad/s.
     dt : float
         Duration in seconds (finite; negative integrates backwards).
 
     Returns
     -------
     Pose or numpy.ndarray, shape (..., 3)
-        The displacement :math:`(\\Delta x, \\Delta y, \\Delta\\theta)` in the body frame at the
+        The displacement :math:`(\Delta x, \Delta y, \Delta\theta)` in the body frame at the
         start (a Pose for a Twist; ``Δθ`` not wrapped).
 
     Examples
@@ -506,21 +506,23 @@ def pose_rate(theta: ArrayLike, twist: Twist | ArrayLike) -> PoseRate | np.ndarr
     """
     th = v.finite_array("theta", theta)
     vx, vy, w = _twist_columns("twist", twist)
+    v.broadcast(theta=th, twist=vx)  # names both when their shapes do not broadcast
+    th, vx, vy, w = np.broadcast_arrays(th, vx, vy, w)
     c, s = np.cos(th), np.sin(th)
     out = [_no_negative_zero(np.asarray(o, dtype=float))
-           for o in np.broadcast_arrays(vx * c - vy * s, vx * s + vy * c, w + 0.0 * th)]
+           for o in (vx * c - vy * s, vx * s + vy * c, w + 0.0 * th)]
     if out[0].ndim == 0:
         return PoseRate(*(float(o) for o in out))
     return np.stack(out, axis=-1)
 
 
-def compose(pose, delta):
-    """The pose reached from ``pose`` by the body-frame displacement ``delta``: pose ⊕ delta.
+def compose(pose: Pose | ArrayLike, delta: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
+    r"""The pose reached from ``pose`` by the body-frame displacement ``delta``: pose ⊕ delta.
 
     .. math::
-        x' = x + \\Delta x\\cos\\theta - \\Delta y \\sin\\theta,\\quad
-        y' = y + \\Delta x \\sin\\theta + \\Delta y \\cos\\theta,\\quad
-        \\theta' = \\operatorname{wrap}(\\theta + \\Delta\\theta)
+        x' = x + \Delta x\cos\theta - \Delta y \sin\theta,\quad
+        y' = y + \Delta x \sin\theta + \Delta y \cos\theta,\quad
+        \theta' = \operatorname{wrap}(\theta + \Delta\theta)
 
     Parameters
     ----------
@@ -554,7 +556,7 @@ def _pose_columns(name: str, pose):
     return arr[..., 0], arr[..., 1], arr[..., 2]
 
 
-def inverse(pose):
+def inverse(pose: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     """The inverse pose: ``compose(pose, inverse(pose))`` is the identity.
 
     Examples
@@ -570,7 +572,7 @@ def inverse(pose):
     return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], is_pose)
 
 
-def relative(pose_from, pose_to):
+def relative(pose_from: Pose | ArrayLike, pose_to: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     """The displacement of ``pose_to`` seen from ``pose_from`` (in its body frame).
 
     ``compose(pose_from, relative(pose_from, pose_to))`` equals ``pose_to``.
@@ -590,7 +592,7 @@ def relative(pose_from, pose_to):
     return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], both)
 
 
-def transform_points(pose, points) -> np.ndarray:
+def transform_points(pose: Pose | ArrayLike, points: ArrayLike) -> np.ndarray:
     """Body-frame points (m, shape (..., 2)) to world coordinates for a body at ``pose``.
 
     Examples
@@ -606,8 +608,9 @@ def transform_points(pose, points) -> np.ndarray:
                     axis=-1)
 
 
-def integrate_twist(twists, dt, pose0=None) -> np.ndarray:
-    """Poses of a body driven by a sequence of twists, each held constant for ``dt`` seconds.
+def integrate_twist(twists: ArrayLike, dt: float,
+                    pose0: Pose | ArrayLike | None = None) -> np.ndarray:
+    r"""Poses of a body driven by a sequence of twists, each held constant for ``dt`` seconds.
 
     Exact for piecewise-constant twists (each step is :func:`se2_exp` composed onto the pose
     before it), and vectorised: the headings are a cumulative sum, and each body-frame step is
@@ -616,7 +619,7 @@ def integrate_twist(twists, dt, pose0=None) -> np.ndarray:
     Parameters
     ----------
     twists : array_like, shape (N, 3)
-        Body-frame twists :math:`(v_x, v_y, \\omega)`, m/s and rad/s, one per step.
+        Body-frame twists :math:`(v_x, v_y, \omega)`, m/s and rad/s, one per step.
     dt : float
         Step duration in seconds (> 0).
     pose0 : Pose or array_like, shape (3,), optional
@@ -625,7 +628,7 @@ def integrate_twist(twists, dt, pose0=None) -> np.ndarray:
     Returns
     -------
     numpy.ndarray, shape (N + 1, 3)
-        Poses :math:`(x, y, \\theta)` at times 0, dt, ..., N dt (headings wrapped).
+        Poses :math:`(x, y, \theta)` at times 0, dt, ..., N dt (headings wrapped).
 
     Examples
     --------
@@ -668,10 +671,10 @@ def integrate_twist(twists, dt, pose0=None) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 
 
-def rover_radius_to_ours(radius_in):
-    """The rover document's turning radius (inches, r > 0 = right) as ours (m, R > 0 = left).
+def rover_radius_to_ours(radius_in: ArrayLike) -> float | NDArray[np.float64]:
+    r"""The rover document's turning radius (inches, r > 0 = right) as ours (m, R > 0 = left).
 
-    .. math:: R = -0.0254\\, r
+    .. math:: R = -0.0254\, r
 
     The rover walkthrough :cite:`osr_controls` measures the turning radius from the rover's
     centre to the turning point in inches, positive for a right turn. Ours is in metres and
@@ -700,7 +703,7 @@ def rover_radius_to_ours(radius_in):
     return float(out) if out.ndim == 0 else out
 
 
-def ours_to_rover_radius(radius_m):
+def ours_to_rover_radius(radius_m: ArrayLike) -> float | NDArray[np.float64]:
     """Our turning radius (m, R > 0 = left) as the rover document's (inches, r > 0 = right).
 
     .. math:: r = -R / 0.0254
@@ -715,14 +718,15 @@ def ours_to_rover_radius(radius_m):
     return float(out) if out.ndim == 0 else out
 
 
-def rover_twist(radius_in, centre_speed_in_per_s):
-    """Our twist for the rover document's turning radius and the speed of the rover's centre.
+def rover_twist(radius_in: ArrayLike,
+                centre_speed_in_per_s: ArrayLike) -> Twist | NDArray[np.float64]:
+    r"""Our twist for the rover document's turning radius and the speed of the rover's centre.
 
-    .. math:: v_x = 0.0254\\, X,\\quad v_y = 0,\\quad \\omega = v_x / R,\\quad R = -0.0254\\, r
+    .. math:: v_x = 0.0254\, X,\quad v_y = 0,\quad \omega = v_x / R,\quad R = -0.0254\, r
 
     where :math:`r` (in) is the rover document's radius (> 0 right) and :math:`X` (in/s) the
     forward speed of the centre of the rover (the midpoint between the middle wheels). An
-    infinite radius is straight driving (:math:`\\omega = 0`). A radius of 0 (a spin in place)
+    infinite radius is straight driving (:math:`\omega = 0`). A radius of 0 (a spin in place)
     cannot be described by a centre speed and is rejected.
 
     Parameters
@@ -770,10 +774,11 @@ def rover_twist(radius_in, centre_speed_in_per_s):
 # --------------------------------------------------------------------------------------------
 
 
-def mecanum_doc_twist_to_ours(Vx_ftps, Vy_ftps, omega):
-    """The mecanum simulator's body twist (ft/s, X right, Y forward) as ours (SI).
+def mecanum_doc_twist_to_ours(Vx_ftps: ArrayLike, Vy_ftps: ArrayLike,
+                              omega: ArrayLike) -> Twist | NDArray[np.float64]:
+    r"""The mecanum simulator's body twist (ft/s, X right, Y forward) as ours (SI).
 
-    .. math:: v_x = 0.3048\\, V_y,\\quad v_y = -0.3048\\, V_x,\\quad \\omega = \\omega_{doc}
+    .. math:: v_x = 0.3048\, V_y,\quad v_y = -0.3048\, V_x,\quad \omega = \omega_{doc}
 
     The simulator :cite:`florida2014mecanum` writes its body velocities with X to the right and
     Y forward, in feet per second. Its rotation rate is counter-clockwise positive (its inverse
@@ -802,10 +807,11 @@ def mecanum_doc_twist_to_ours(Vx_ftps, Vy_ftps, omega):
                          w), scalar)
 
 
-def ours_to_mecanum_doc_twist(twist):
-    """Our twist (SI) as the mecanum simulator's ``(Vx_ftps, Vy_ftps, omega)``.
+def ours_to_mecanum_doc_twist(
+        twist: Twist | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
+    r"""Our twist (SI) as the mecanum simulator's ``(Vx_ftps, Vy_ftps, omega)``.
 
-    .. math:: V_x = -v_y / 0.3048,\\quad V_y = v_x / 0.3048,\\quad \\omega_{doc} = \\omega
+    .. math:: V_x = -v_y / 0.3048,\quad V_y = v_x / 0.3048,\quad \omega_{doc} = \omega
 
     Parameters
     ----------
@@ -825,10 +831,10 @@ def ours_to_mecanum_doc_twist(twist):
                         _no_negative_zero(np.asarray(vx) / FOOT), np.asarray(w)], is_twist)
 
 
-def mecanum_doc_heading_to_ours(psi):
-    """The mecanum simulator's heading (rad, clockwise from +Y) as ours (CCW from +x).
+def mecanum_doc_heading_to_ours(psi: ArrayLike) -> float | NDArray[np.float64]:
+    r"""The mecanum simulator's heading (rad, clockwise from +Y) as ours (CCW from +x).
 
-    .. math:: \\theta = \\operatorname{wrap}(\\pi/2 - \\psi)
+    .. math:: \theta = \operatorname{wrap}(\pi/2 - \psi)
 
     The simulator's user interface gives angles in degrees: convert them first with
     ``wheelkin.units.to_si(psi_deg, "deg")``.
@@ -844,10 +850,10 @@ def mecanum_doc_heading_to_ours(psi):
     return wrap_angle(_no_negative_zero(math.pi / 2 - p))
 
 
-def ours_to_mecanum_doc_heading(theta):
-    """Our heading (rad, CCW from +x) as the mecanum simulator's (clockwise from +Y).
+def ours_to_mecanum_doc_heading(theta: ArrayLike) -> float | NDArray[np.float64]:
+    r"""Our heading (rad, CCW from +x) as the mecanum simulator's (clockwise from +Y).
 
-    .. math:: \\psi = \\operatorname{wrap}(\\pi/2 - \\theta)
+    .. math:: \psi = \operatorname{wrap}(\pi/2 - \theta)
 
     Examples
     --------
@@ -858,11 +864,12 @@ def ours_to_mecanum_doc_heading(theta):
     return wrap_angle(_no_negative_zero(math.pi / 2 - t))
 
 
-def mecanum_doc_pose_to_ours(X_ft, Y_ft, psi):
-    """The mecanum simulator's world pose (ft, ft, rad clockwise from +Y) as ours.
+def mecanum_doc_pose_to_ours(X_ft: ArrayLike, Y_ft: ArrayLike,
+                             psi: ArrayLike) -> Pose | NDArray[np.float64]:
+    r"""The mecanum simulator's world pose (ft, ft, rad clockwise from +Y) as ours.
 
-    .. math:: x = 0.3048\\, X,\\quad y = 0.3048\\, Y,\\quad
-              \\theta = \\operatorname{wrap}(\\pi/2 - \\psi)
+    .. math:: x = 0.3048\, X,\quad y = 0.3048\, Y,\quad
+              \theta = \operatorname{wrap}(\pi/2 - \psi)
 
     Its world X is to the right (east) and Y up the page (north), as ours; only the unit and
     the heading convention differ.
@@ -877,7 +884,8 @@ def mecanum_doc_pose_to_ours(X_ft, Y_ft, psi):
                  scalar)
 
 
-def ours_to_mecanum_doc_pose(pose):
+def ours_to_mecanum_doc_pose(
+        pose: Pose | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
     """Our world pose as the mecanum simulator's ``(X_ft, Y_ft, psi)`` (psi clockwise from +Y).
 
     Examples
@@ -895,16 +903,17 @@ def ours_to_mecanum_doc_pose(pose):
 # --------------------------------------------------------------------------------------------
 
 
-def firmware_pose_to_ours(X_mm, Y_mm, theta):
-    """The Radon Ulzer firmware's pose (mm, mm, rad) as ours (m, m, rad).
+def firmware_pose_to_ours(X_mm: ArrayLike, Y_mm: ArrayLike,
+                          theta: ArrayLike) -> Pose | NDArray[np.float64]:
+    r"""The Radon Ulzer firmware's pose (mm, mm, rad) as ours (m, m, rad).
 
-    .. math:: x = Y / 1000,\\quad y = -X / 1000,\\quad \\theta = \\theta_{fw}
+    .. math:: x = Y / 1000,\quad y = -X / 1000,\quad \theta = \theta_{fw}
 
     The firmware :cite:`radonulzer_architecture` puts Y along the start heading and X to its
     right, and measures its orientation counter-clockwise from +Y, so a step :math:`d` moves it
-    by :math:`dX = -d \\sin\\theta`, :math:`dY = d \\cos\\theta`. Turning that frame so that its
+    by :math:`dX = -d \sin\theta`, :math:`dY = d \cos\theta`. Turning that frame so that its
     +Y becomes our +x leaves the heading angle unchanged; it is passed through as given (not
-    wrapped: the firmware keeps it in :math:`(-2\\pi, 2\\pi)`). The firmware stores the
+    wrapped: the firmware keeps it in :math:`(-2\pi, 2\pi)`). The firmware stores the
     orientation in mrad: convert with ``wheelkin.units.to_si(theta_mrad, "mrad")`` first.
 
     Parameters
@@ -927,10 +936,11 @@ def firmware_pose_to_ours(X_mm, Y_mm, theta):
     return _pack(Pose, (y_fw * MM, _no_negative_zero(-x_fw * MM), th), scalar)
 
 
-def ours_to_firmware_pose(pose):
-    """Our pose as the Radon Ulzer firmware's ``(X_mm, Y_mm, theta)``.
+def ours_to_firmware_pose(
+        pose: Pose | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
+    r"""Our pose as the Radon Ulzer firmware's ``(X_mm, Y_mm, theta)``.
 
-    .. math:: X = -1000\\, y,\\quad Y = 1000\\, x,\\quad \\theta_{fw} = \\theta
+    .. math:: X = -1000\, y,\quad Y = 1000\, x,\quad \theta_{fw} = \theta
 
     Examples
     --------
@@ -947,12 +957,12 @@ def ours_to_firmware_pose(pose):
 # --------------------------------------------------------------------------------------------
 
 
-def lab_pose_to_ours(x, y, theta):
-    """The Webots lab's pose as ours: the identity, validated.
+def lab_pose_to_ours(x: ArrayLike, y: ArrayLike, theta: ArrayLike) -> Pose | NDArray[np.float64]:
+    r"""The Webots lab's pose as ours: the identity, validated.
 
     The lab :cite:`webots_waypoint_lab` works in metres with x east, y north and the heading
-    counter-clockwise from +x (its position update is :math:`x = x_0 + \\Delta x \\cos\\theta`,
-    :math:`y = y_0 + \\Delta x \\sin\\theta`): the same as ours. The converter exists so that
+    counter-clockwise from +x (its position update is :math:`x = x_0 + \Delta x \cos\theta`,
+    :math:`y = y_0 + \Delta x \sin\theta`): the same as ours. The converter exists so that
     code says where a number came from, and it still rejects NaN and infinity.
 
     Examples
@@ -964,7 +974,7 @@ def lab_pose_to_ours(x, y, theta):
     return _pack(Pose, (x_lab, y_lab, th), scalar)
 
 
-def ours_to_lab_pose(pose):
+def ours_to_lab_pose(pose: Pose | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
     """Our pose as the Webots lab's ``(x, y, theta)``: the identity, validated.
 
     Examples

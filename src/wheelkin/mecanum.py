@@ -99,7 +99,7 @@ DOCUMENT_MAX_SPEED = 15.0 * FOOT
 
 @dataclass(frozen=True)
 class MecanumGeometry:
-    """Dimensions of a four-wheel mecanum vehicle (m, rad), validated on construction.
+    r"""Dimensions of a four-wheel mecanum vehicle (m, rad), validated on construction.
 
     Parameters
     ----------
@@ -110,7 +110,7 @@ class MecanumGeometry:
     half_track : float
         :math:`b`, centre to each wheel's mid-plane along y, m, > 0.
     roller_angle : float
-        :math:`\\gamma`, angle between a roller's axis and the wheel's axle, rad, in
+        :math:`\gamma`, angle between a roller's axis and the wheel's axle, rad, in
         (0, pi/2); default pi/4.
 
     Examples
@@ -141,12 +141,12 @@ class MecanumGeometry:
 
     @property
     def lateral_factor(self) -> float:
-        """:math:`\\cot\\gamma`: how much a sideways velocity turns the wheels (1 at 45 deg)."""
+        r""":math:`\cot\gamma`: how much a sideways velocity turns the wheels (1 at 45 deg)."""
         return 1.0 / math.tan(self.roller_angle)
 
     @property
     def k(self) -> float:
-        """:math:`k = b + a\\cot\\gamma`, m: the yaw lever arm (:math:`a + b` at 45 deg)."""
+        r""":math:`k = b + a\cot\gamma`, m: the yaw lever arm (:math:`a + b` at 45 deg)."""
         return self.half_track + self.half_wheelbase * self.lateral_factor
 
 
@@ -166,12 +166,7 @@ def _geometry(geometry) -> MecanumGeometry:
 
 
 def _broadcast(**arrays: np.ndarray) -> list[np.ndarray]:
-    try:
-        return list(np.broadcast_arrays(*arrays.values()))
-    except ValueError:
-        shapes = ", ".join(f"{n} {np.shape(a)}" for n, a in arrays.items())
-        raise ValueError(f"{', '.join(arrays)} must have broadcastable shapes, got {shapes}"
-                         ) from None
+    return v.broadcast(**arrays)
 
 
 def inverse_matrix(geometry: MecanumGeometry) -> np.ndarray:
@@ -307,7 +302,7 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     return twist @ inverse_matrix(g).T
 
 
-def forward_kinematics(wheel_rates, geometry: MecanumGeometry) -> np.ndarray:
+def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.ndarray:
     r"""The body twist (vx, vy, omega) that best explains four wheel rates (least squares).
 
     .. math::
@@ -348,7 +343,7 @@ def forward_kinematics(wheel_rates, geometry: MecanumGeometry) -> np.ndarray:
     return rates @ forward_matrix(g).T
 
 
-def fighting_component(wheel_rates) -> np.ndarray:
+def fighting_component(wheel_rates: ArrayLike) -> np.ndarray:
     r"""How much of the wheel rates is the no-motion pattern (+1, +1, -1, -1), rad/s.
 
     Any four rates split uniquely into a part that moves the vehicle and
@@ -377,7 +372,8 @@ def fighting_component(wheel_rates) -> np.ndarray:
     return np.asarray(rates @ FIGHTING_PATTERN / 4.0)
 
 
-def max_rim_speed(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
+def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
+                  geometry: MecanumGeometry) -> np.ndarray:
     r"""The fastest wheel's rim speed :math:`r_w\max_i|\varphi_i|`, m/s, for a body twist.
 
     Every sign combination of the :math:`v_y` and :math:`\omega` terms occurs on one of the
@@ -399,7 +395,8 @@ def max_rim_speed(vx, vy, omega, geometry: MecanumGeometry) -> np.ndarray:
     return np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k
 
 
-def grip_usage(accel_x, accel_y, mu, roller_angle=math.pi / 4, gravity=9.81) -> np.ndarray:
+def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: float = math.pi / 4,
+               gravity: float = 9.81) -> np.ndarray:
     r"""Share of the tyres' grip that a body acceleration needs (above 1: the wheels slip).
 
     A mecanum wheel can push on the floor only along its floor roller's axis
@@ -461,8 +458,8 @@ class SpeedLimit(NamedTuple):
     reason: str
 
 
-def limit_speed(twist, max_speed, geometry: MecanumGeometry | None = None, *,
-                refuse: bool = False) -> SpeedLimit:
+def limit_speed(twist: Twist | ArrayLike, max_speed: float, geometry: MecanumGeometry | None = None,
+                *, refuse: bool = False) -> SpeedLimit:
     r"""Check a body twist against a top speed; scale it down, or refuse it, saying why.
 
     Two limits are checked:
@@ -561,7 +558,7 @@ def desaturate(wheel_rates: ArrayLike, max_rate: float) -> np.ndarray:
     return _kernels.desaturate(rates, v.positive("max_rate", max_rate))
 
 
-def circle_speed(radius, lap_time) -> np.ndarray:
+def circle_speed(radius: ArrayLike, lap_time: ArrayLike) -> np.ndarray:
     r"""Speed along a circle driven once in ``lap_time``: :math:`v = 2\pi|R|/T`, m/s.
 
     Parameters
@@ -594,7 +591,8 @@ def _circle_args(radius, lap_time) -> tuple[np.ndarray, np.ndarray]:
     return r_a, t_a
 
 
-def circle_twist(radius, lap_time, t=0.0, *, heading: str = "rotating") -> np.ndarray:
+def circle_twist(radius: ArrayLike, lap_time: ArrayLike, t: ArrayLike = 0.0, *,
+                 heading: str = "rotating") -> np.ndarray:
     r"""Body twist that drives a circle of radius :math:`R` once every :math:`T` seconds.
 
     The vehicle starts at the origin facing +x, moving along +x, with the centre of the
@@ -642,7 +640,8 @@ def circle_twist(radius, lap_time, t=0.0, *, heading: str = "rotating") -> np.nd
                     axis=-1)
 
 
-def go_to_point_twist(pose, goal, speed, max_omega, dt=None) -> np.ndarray:
+def go_to_point_twist(pose: Pose | ArrayLike, goal: Pose | ArrayLike, speed: float,
+                      max_omega: float, dt: float | None = None) -> np.ndarray:
     r"""Body twist that drives straight to ``goal`` while turning to its heading.
 
     "Where am I" is ``pose`` :math:`(x, y, \theta)`, "where am I going" is ``goal``

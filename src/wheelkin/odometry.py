@@ -1,24 +1,24 @@
-"""Dead reckoning for a differential drive: from encoder increments to a pose.
+r"""Dead reckoning for a differential drive: from encoder increments to a pose.
 
 The chapter "Odometry: where am I?" derives every formula here and checks it. Symbols (the
 same in the chapter):
 
-- :math:`\\mathrm{ENC}` encoder steps per metre of wheel travel; the functions take
-  ``steps_per_mm`` :math:`= \\mathrm{ENC}/1000`.
-- :math:`W` wheel base (``wheel_base_mm``): wheel to wheel, the track width of the
-  differential drive.
+- :math:`\mathrm{ENC}` encoder steps per metre of wheel travel; the functions take
+  ``steps_per_mm`` :math:`= \mathrm{ENC}/1000`.
+- :math:`W` the track width (parameter ``track_width_mm``, the firmware README's
+  *wheelBase*): wheel to wheel, side to side, in mm.
 - :math:`n_L, n_R` encoder step increments of the left and right wheel in one update, and
-  :math:`\\Delta s_L = 1000\\,n_L/\\mathrm{ENC}`, :math:`\\Delta s_R = 1000\\,n_R/\\mathrm{ENC}`
+  :math:`\Delta s_L = 1000\,n_L/\mathrm{ENC}`, :math:`\Delta s_R = 1000\,n_R/\mathrm{ENC}`
   the wheel travel (mm) in that update.
-- :math:`\\Delta s = (\\Delta s_R + \\Delta s_L)/2` the travel of the mid-point between the
-  wheels, :math:`\\Delta\\theta = (\\Delta s_R - \\Delta s_L)/W` the change of heading.
-- :math:`(x, y, \\theta)` the pose: in our frame (REP-103) x forward at the start, y to the
-  left, heading :math:`\\theta` counter-clockwise from +x, in mm and rad (the firmware's units;
+- :math:`\Delta s = (\Delta s_R + \Delta s_L)/2` the travel of the mid-point between the
+  wheels, :math:`\Delta\theta = (\Delta s_R - \Delta s_L)/W` the change of heading.
+- :math:`(x, y, \theta)` the pose: in our frame (REP-103) x forward at the start, y to the
+  left, heading :math:`\theta` counter-clockwise from +x, in mm and rad (the firmware's units;
   multiply by 1e-3 for the library's metres).
 
 An increment array always has shape (N, 2) with the columns in the order (left, right).
 
-Three updates of the pose over one step, all with :math:`\\theta' = \\theta + \\Delta\\theta`:
+Three updates of the pose over one step, all with :math:`\theta' = \theta + \Delta\theta`:
 
 .. list-table::
    :header-rows: 1
@@ -27,15 +27,15 @@ Three updates of the pose over one step, all with :math:`\\theta' = \\theta + \\
      - position update
      - order
    * - ``euler``
-     - :math:`\\Delta s\\,(\\cos\\theta, \\sin\\theta)`
+     - :math:`\Delta s\,(\cos\theta, \sin\theta)`
      - first
    * - ``midpoint``
-     - :math:`\\Delta s\\,(\\cos\\bar\\theta, \\sin\\bar\\theta)`,
-       :math:`\\bar\\theta = \\theta + \\Delta\\theta/2`
+     - :math:`\Delta s\,(\cos\bar\theta, \sin\bar\theta)`,
+       :math:`\bar\theta = \theta + \Delta\theta/2`
      - second
    * - ``exact``
-     - :math:`\\Delta s\\,\\dfrac{\\sin(\\Delta\\theta/2)}{\\Delta\\theta/2}
-       (\\cos\\bar\\theta, \\sin\\bar\\theta)`
+     - :math:`\Delta s\,\dfrac{\sin(\Delta\theta/2)}{\Delta\theta/2}
+       (\cos\bar\theta, \sin\bar\theta)`
      - exact on arcs
 
 The exact update assumes the curvature is constant within a step (both wheel speeds constant,
@@ -58,10 +58,10 @@ those mistakes fixed; :func:`firmware_scheme` chooses every variant separately, 
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Literal, NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _kernels
 from wheelkin import _validate as v
@@ -132,14 +132,15 @@ def _whole(name: str, arr: np.ndarray) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 # the kinematics of one update
 
-def body_increments(increments, steps_per_mm, wheel_base_mm):
-    """Travel of the mid-point and change of heading in each update, from encoder increments.
+def body_increments(increments: ArrayLike, steps_per_mm: float,
+                    track_width_mm: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    r"""Travel of the mid-point and change of heading in each update, from encoder increments.
 
     .. math::
-        \\Delta s = \\frac{n_L + n_R}{2\\,\\mathrm{ENC}_{mm}}, \\qquad
-        \\Delta\\theta = \\frac{n_R - n_L}{\\mathrm{ENC}_{mm}\\, W}
+        \Delta s = \frac{n_L + n_R}{2\,\mathrm{ENC}_{mm}}, \qquad
+        \Delta\theta = \frac{n_R - n_L}{\mathrm{ENC}_{mm}\, W}
 
-    with :math:`\\mathrm{ENC}_{mm}` = ``steps_per_mm`` and :math:`W` = ``wheel_base_mm``.
+    with :math:`\mathrm{ENC}_{mm}` = ``steps_per_mm`` and :math:`W` = ``track_width_mm``.
 
     Parameters
     ----------
@@ -147,18 +148,18 @@ def body_increments(increments, steps_per_mm, wheel_base_mm):
         Encoder step increments per update, columns (left, right).
     steps_per_mm : float
         Encoder steps per mm of wheel travel (> 0).
-    wheel_base_mm : float
-        Wheel base W, wheel to wheel, in mm (> 0).
+    track_width_mm : float
+        Track width W (the README's wheelBase), wheel to wheel, in mm (> 0).
 
     Returns
     -------
     distance_mm, dtheta_rad : numpy.ndarray, shape (N,)
-        :math:`\\Delta s` (mm, positive forward) and :math:`\\Delta\\theta` (rad,
+        :math:`\Delta s` (mm, positive forward) and :math:`\Delta\theta` (rad,
         counter-clockwise positive).
 
     Examples
     --------
-    The right wheel 85 steps further than the left, 10 steps per mm, an 85 mm wheel base:
+    The right wheel 85 steps further than the left, 10 steps per mm, an 85 mm track width:
     the mid-point moves 4.25 mm and the robot turns 0.1 rad to the left.
 
     >>> ds, dth = body_increments([[0, 85]], 10.0, 85.0)
@@ -167,19 +168,19 @@ def body_increments(increments, steps_per_mm, wheel_base_mm):
     """
     inc = _increments(increments)
     k = v.positive("steps_per_mm", steps_per_mm)
-    w = v.positive("wheel_base_mm", wheel_base_mm)
+    w = v.positive("track_width_mm", track_width_mm)
     left, right = inc[:, 0], inc[:, 1]
     return (left + right) / (2.0 * k), (right - left) / (k * w)
 
 
-def chord_factor(dtheta):
-    """Ratio of the chord to the arc for a turn of :math:`\\Delta\\theta`: sin(u)/u, u = Δθ/2.
+def chord_factor(dtheta: ArrayLike) -> float | NDArray[np.float64]:
+    r"""Ratio of the chord to the arc for a turn of :math:`\Delta\theta`: sin(u)/u, u = Δθ/2.
 
-    .. math:: c(\\Delta\\theta) = \\frac{\\sin(\\Delta\\theta/2)}{\\Delta\\theta/2}
-              \\approx 1 - \\frac{\\Delta\\theta^2}{24} + \\frac{\\Delta\\theta^4}{1920}
-              \\quad (|\\Delta\\theta| < \\text{SERIES\\_THRESHOLD})
+    .. math:: c(\Delta\theta) = \frac{\sin(\Delta\theta/2)}{\Delta\theta/2}
+              \approx 1 - \frac{\Delta\theta^2}{24} + \frac{\Delta\theta^4}{1920}
+              \quad (|\Delta\theta| < \text{SERIES\_THRESHOLD})
 
-    The closed form is 0/0 at :math:`\\Delta\\theta = 0`; below :data:`SERIES_THRESHOLD` the
+    The closed form is 0/0 at :math:`\Delta\theta = 0`; below :data:`SERIES_THRESHOLD` the
     series is used instead (its truncation error there is under 1e-28, so the switch is
     seamless; ros2_controllers' diff-drive odometry switches in the same spirit).
 
@@ -191,7 +192,7 @@ def chord_factor(dtheta):
     Returns
     -------
     float or numpy.ndarray
-        The factor, 1 at :math:`\\Delta\\theta = 0`, :math:`2/\\pi` at a half turn.
+        The factor, 1 at :math:`\Delta\theta = 0`, :math:`2/\pi` at a half turn.
 
     Examples
     --------
@@ -203,18 +204,19 @@ def chord_factor(dtheta):
     return float(out) if out.ndim == 0 else out
 
 
-def pose_update(pose, distance, dtheta, method="exact"):
-    """The pose after one update that moved the mid-point by Δs and turned it by Δθ.
+def pose_update(pose: ArrayLike, distance: ArrayLike, dtheta: ArrayLike,
+                method: Literal["exact", "midpoint", "euler"] = "exact") -> NDArray[np.float64]:
+    r"""The pose after one update that moved the mid-point by Δs and turned it by Δθ.
 
     .. math::
-        \\theta' = \\theta + \\Delta\\theta, \\qquad
-        \\begin{pmatrix} x' \\\\ y' \\end{pmatrix} =
-        \\begin{pmatrix} x \\\\ y \\end{pmatrix} + \\Delta s\\, c
-        \\begin{pmatrix} \\cos\\varphi \\\\ \\sin\\varphi \\end{pmatrix}
+        \theta' = \theta + \Delta\theta, \qquad
+        \begin{pmatrix} x' \\ y' \end{pmatrix} =
+        \begin{pmatrix} x \\ y \end{pmatrix} + \Delta s\, c
+        \begin{pmatrix} \cos\varphi \\ \sin\varphi \end{pmatrix}
 
-    with :math:`(c, \\varphi)` = :math:`(1, \\theta)` for ``"euler"``,
-    :math:`(1, \\theta + \\Delta\\theta/2)` for ``"midpoint"`` and
-    :math:`(` :func:`chord_factor` :math:`(\\Delta\\theta), \\theta + \\Delta\\theta/2)` for
+    with :math:`(c, \varphi)` = :math:`(1, \theta)` for ``"euler"``,
+    :math:`(1, \theta + \Delta\theta/2)` for ``"midpoint"`` and
+    :math:`(` :func:`chord_factor` :math:`(\Delta\theta), \theta + \Delta\theta/2)` for
     ``"exact"`` (the chord of the arc of constant curvature).
 
     Parameters
@@ -268,12 +270,14 @@ def _step(p: np.ndarray, ds: np.ndarray, dth: np.ndarray, method: str) -> np.nda
                      theta + dth], axis=-1)
 
 
-def integrate(increments, steps_per_mm, wheel_base_mm, method="exact", pose=(0.0, 0.0, 0.0)):
-    """Dead-reckon a differential drive from its per-update encoder increments.
+def integrate(increments: ArrayLike, steps_per_mm: float, track_width_mm: float,
+              method: Literal["exact", "midpoint", "euler"] = "exact",
+              pose: ArrayLike = (0.0, 0.0, 0.0)) -> NDArray[np.float64]:
+    r"""Dead-reckon a differential drive from its per-update encoder increments.
 
     Applies :func:`pose_update` once per row of ``increments``, with the Δs and Δθ of
     :func:`body_increments`. The heading is the running sum
-    :math:`\\theta_k = \\theta_0 + \\sum_{j \\le k} \\Delta\\theta_j` (not wrapped), and each
+    :math:`\theta_k = \theta_0 + \sum_{j \le k} \Delta\theta_j` (not wrapped), and each
     position step depends only on the heading before it, so the whole run is computed with
     cumulative sums (10^5 updates take a few milliseconds).
 
@@ -284,7 +288,7 @@ def integrate(increments, steps_per_mm, wheel_base_mm, method="exact", pose=(0.0
         ideal, unquantised encoder).
     steps_per_mm : float
         Encoder steps per mm of wheel travel (> 0); ENC/1000.
-    wheel_base_mm : float
+    track_width_mm : float
         W, wheel to wheel, mm (> 0).
     method : {"exact", "midpoint", "euler"}
         See the module docstring: exact on arcs, second order, first order.
@@ -313,7 +317,7 @@ def integrate(increments, steps_per_mm, wheel_base_mm, method="exact", pose=(0.0
     [[1000.         0.         0.    ]
      [1000.         0.         1.5708]]
     """
-    ds, dth = body_increments(increments, steps_per_mm, wheel_base_mm)
+    ds, dth = body_increments(increments, steps_per_mm, track_width_mm)
     v.choice("method", method, METHODS)
     p0 = _pose(pose)
     theta = p0[2] + np.cumsum(dth)
@@ -328,8 +332,8 @@ def integrate(increments, steps_per_mm, wheel_base_mm, method="exact", pose=(0.0
 # the same in SI: wheel travels in metres, the track width W in metres
 
 class BodyMotion(NamedTuple):
-    """The motion of the mid-point between the wheels in each update: travel ``distance``
-    :math:`\\Delta s` (m, positive forward) and heading change ``dtheta`` :math:`\\Delta\\theta`
+    r"""The motion of the mid-point between the wheels in each update: travel ``distance``
+    :math:`\Delta s` (m, positive forward) and heading change ``dtheta`` :math:`\Delta\theta`
     (rad, counter-clockwise positive)."""
 
     distance: np.ndarray
@@ -356,8 +360,9 @@ def body_motion(delta_left: ArrayLike, delta_right: ArrayLike,
         \Delta s = \frac{\Delta s_L + \Delta s_R}{2}, \qquad
         \Delta\theta = \frac{\Delta s_R - \Delta s_L}{W}
 
-    (ros2_controllers' ``diff_drive_controller`` and WPILib's ``DifferentialDriveOdometry``
-    use the same two lines). The SI twin of :func:`body_increments`.
+    (ros2_controllers' ``diff_drive_controller`` uses the same two lines, and so does
+    WPILib's ``DifferentialDriveKinematics.toTwist2d``; WPILib's ``DifferentialDriveOdometry``
+    instead takes the heading change from a gyro). The SI twin of :func:`body_increments`.
 
     Parameters
     ----------
@@ -442,15 +447,16 @@ def integrate_si(delta_left: ArrayLike, delta_right: ArrayLike, track_width: flo
 # --------------------------------------------------------------------------------------------
 # encoder sequences for experiments
 
-def plan_wheel_travel(segments, wheel_base_mm, max_step_mm):
-    """Cumulative wheel travel (left, right) along a path of arcs, sampled in small updates.
+def plan_wheel_travel(segments: ArrayLike, track_width_mm: float,
+                      max_step_mm: float) -> NDArray[np.float64]:
+    r"""Cumulative wheel travel (left, right) along a path of arcs, sampled in small updates.
 
     Each segment ``(distance_mm, turn_rad)`` moves the mid-point by ``distance_mm`` along an arc
     of constant curvature while the heading changes by ``turn_rad`` (distance 0: a turn on the
     spot). The wheels then travel
 
-    .. math:: s_L = \\Delta s - \\tfrac{W}{2}\\Delta\\theta, \\qquad
-              s_R = \\Delta s + \\tfrac{W}{2}\\Delta\\theta
+    .. math:: s_L = \Delta s - \tfrac{W}{2}\Delta\theta, \qquad
+              s_R = \Delta s + \tfrac{W}{2}\Delta\theta
 
     and each segment is split into the fewest equal updates in which no wheel moves more than
     ``max_step_mm``.
@@ -459,7 +465,7 @@ def plan_wheel_travel(segments, wheel_base_mm, max_step_mm):
     ----------
     segments : array_like, shape (M, 2)
         (distance_mm, turn_rad) per segment, driven in order.
-    wheel_base_mm : float
+    track_width_mm : float
         W in mm (> 0).
     max_step_mm : float
         Largest wheel travel per update, mm (> 0).
@@ -482,13 +488,13 @@ def plan_wheel_travel(segments, wheel_base_mm, max_step_mm):
     if seg.ndim != 2 or seg.shape[1] != 2:
         raise ValueError("segments must have shape (M, 2): (distance_mm, turn_rad) per segment, "
                          f"got shape {seg.shape}")
-    w = v.positive("wheel_base_mm", wheel_base_mm)
+    w = v.positive("track_width_mm", track_width_mm)
     h = v.positive("max_step_mm", max_step_mm)
     with np.errstate(all="ignore"):
         wheel_travel = np.abs(seg[:, :1]) + 0.5 * w * np.abs(seg[:, 1:])
         steps = np.sum(np.ceil(wheel_travel / h))
     if not np.isfinite(steps) or steps > 1e8:
-        raise ValueError(f"segments, wheel_base_mm and max_step_mm ask for {steps:.3g} steps "
+        raise ValueError(f"segments, track_width_mm and max_step_mm ask for {steps:.3g} steps "
                          "(more than 1e8): make max_step_mm larger")
     pieces = [np.zeros((1, 2))]
     start = np.zeros(2)
@@ -501,11 +507,11 @@ def plan_wheel_travel(segments, wheel_base_mm, max_step_mm):
     return np.concatenate(pieces)
 
 
-def encoder_increments(travel_mm, steps_per_mm):
-    """The per-update increments of an ideal quantising encoder for a cumulative wheel travel.
+def encoder_increments(travel_mm: ArrayLike, steps_per_mm: float) -> NDArray[np.int64]:
+    r"""The per-update increments of an ideal quantising encoder for a cumulative wheel travel.
 
-    .. math:: n_k = \\lfloor \\mathrm{ENC}_{mm}\\, s_k \\rfloor
-                  - \\lfloor \\mathrm{ENC}_{mm}\\, s_{k-1} \\rfloor
+    .. math:: n_k = \lfloor \mathrm{ENC}_{mm}\, s_k \rfloor
+                  - \lfloor \mathrm{ENC}_{mm}\, s_{k-1} \rfloor
 
     (the counter counts the step edges crossed; the travel is measured from an edge).
 
@@ -552,8 +558,11 @@ WRAPS = ("literal", "fmod", "pi", "none")
 POSITION_HEADINGS = ("end", "midpoint")
 
 
-def firmware_scheme(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0, 0.0), *,
-                    center="sum", wrap="pi", position_heading="midpoint"):
+def firmware_scheme(
+        increments: ArrayLike, steps_per_mm: float, track_width_mm: float,
+        pose: ArrayLike = (0.0, 0.0, 0.0), *, center: Literal["sum", "difference"] = "sum",
+        wrap: Literal["pi", "fmod", "literal", "none"] = "pi",
+        position_heading: Literal["midpoint", "end"] = "midpoint") -> NDArray[np.float64]:
     """The firmware README's odometry scheme, with each printed choice selectable.
 
     Per update, in the README's names (our symbols in brackets):
@@ -579,7 +588,7 @@ def firmware_scheme(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0, 0.0
         Encoder step increments (L, R) per update.
     steps_per_mm : float
         encoderStepsPerMM (> 0).
-    wheel_base_mm : float
+    track_width_mm : float
         wheelBase, mm (> 0).
     pose : array_like, shape (3,)
         Start (X_mm, Y_mm, orientation_rad) in the firmware's frame.
@@ -605,7 +614,7 @@ def firmware_scheme(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0, 0.0
     """
     inc = _increments(increments)
     k = v.positive("steps_per_mm", steps_per_mm)
-    w = v.positive("wheel_base_mm", wheel_base_mm)
+    w = v.positive("track_width_mm", track_width_mm)
     p0 = _pose(pose)
     v.choice("center", center, CENTERS)
     v.choice("wrap", wrap, WRAPS)
@@ -644,8 +653,10 @@ def firmware_scheme(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0, 0.0
     return np.column_stack([p0[0] + np.cumsum(dx), p0[1] + np.cumsum(dy), after])
 
 
-def firmware_as_printed(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0, 0.0), *,
-                        wrap="literal"):
+def firmware_as_printed(
+        increments: ArrayLike, steps_per_mm: float, track_width_mm: float,
+        pose: ArrayLike = (0.0, 0.0, 0.0), *,
+        wrap: Literal["pi", "fmod", "literal", "none"] = "literal") -> NDArray[np.float64]:
     """The firmware README's odometry scheme exactly as printed. **Wrong**: do not port it.
 
     As printed (see :func:`firmware_scheme` for the per-update equations):
@@ -670,12 +681,14 @@ def firmware_as_printed(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0,
     [[  0. -10.   0.]]
     """
     v.choice("wrap", wrap, ("literal", "fmod"))
-    return firmware_scheme(increments, steps_per_mm, wheel_base_mm, pose, center="difference",
+    return firmware_scheme(increments, steps_per_mm, track_width_mm, pose, center="difference",
                            wrap=wrap, position_heading="end")
 
 
-def firmware_corrected(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0, 0.0), *,
-                       position_heading="midpoint"):
+def firmware_corrected(
+        increments: ArrayLike, steps_per_mm: float, track_width_mm: float,
+        pose: ArrayLike = (0.0, 0.0, 0.0), *,
+        position_heading: Literal["midpoint", "end"] = "midpoint") -> NDArray[np.float64]:
     """The firmware README's odometry scheme with its mistakes corrected.
 
     stepsCenter = (L + R)/2; orientation' = orientation + alpha, wrapped into (−π, π];
@@ -693,7 +706,7 @@ def firmware_corrected(increments, steps_per_mm, wheel_base_mm, pose=(0.0, 0.0, 
     >>> print(np.round(firmware_corrected([[-100, 100]], 10.0, 85.0), 4))
     [[0.     0.     0.2353]]
     """
-    return firmware_scheme(increments, steps_per_mm, wheel_base_mm, pose, center="sum",
+    return firmware_scheme(increments, steps_per_mm, track_width_mm, pose, center="sum",
                            wrap="pi", position_heading=position_heading)
 
 
@@ -702,8 +715,22 @@ def _c_mod(a: int, b: int) -> int:
     return a - b * c_div(a, b)
 
 
-def firmware_fixed_point(increments, steps_per_mm, wheel_base_mm, pose=(0, 0, 0), *,
-                         carry=False):
+def _div_round_up(a: int, b: int) -> int:
+    """The firmware source's ``Util::divRoundUp(int32_t, int32_t)``, line for line.
+
+    C's quotient (toward zero), plus one step away from zero when the remainder's magnitude
+    is at least ``|b / 2|``; a quotient of 0 always steps to +1, whatever the sign of ``a``.
+    """
+    result = c_div(a, b)
+    if abs(a - b * result) >= abs(c_div(b, 2)):
+        result += -1 if result < 0 else 1
+    return result
+
+
+def firmware_fixed_point(increments: ArrayLike, steps_per_mm: float, track_width_mm: float,
+                         pose: ArrayLike = (0, 0, 0), *, carry: bool = False,
+                         alpha_rounding: Literal["truncate", "source"] = "truncate",
+                         ) -> NDArray[np.int64]:
     """A fixed-point model of the README's "improvement": whole mm, whole mrad, C truncation.
 
     A direct port to C with 32-bit integer state, the centre distance corrected to the sum
@@ -723,18 +750,30 @@ def firmware_fixed_point(increments, steps_per_mm, wheel_base_mm, pose=(0, 0, 0)
     code keeps its position in 1/1000 steps for the same reason). The 0.185 mrad lost at every
     wrap by 6283 is kept in both modes.
 
+    With ``alpha_rounding="source"`` alpha is rounded as the firmware's source code
+    (``Odometry::calculateOrientation``, BlueAndi/RadonUlzer) does it, in two stages with
+    its ``Util::divRoundUp``: the wheel-travel difference to whole mm,
+    ``a = divRoundUp(1000 (R − L), ENC)``, then ``alpha_mrad = divRoundUp(1000 a, wheelBase)``.
+    Every turn is then a multiple of about 1000/wheelBase mrad, no fraction is carried, and a
+    difference between −1 and −1/2 mm is rounded to +1 mm (``divRoundUp`` steps a quotient of
+    0 up). It needs ENC = 1000 ``steps_per_mm`` and ``track_width_mm`` to be whole numbers, as
+    in the firmware; ``carry`` then applies to the distance and the position only.
+
     Parameters
     ----------
     increments : array_like of whole numbers, shape (N, 2)
         Encoder step increments (L, R) per update.
     steps_per_mm : float
         encoderStepsPerMM (> 0), used as a real number.
-    wheel_base_mm : float
+    track_width_mm : float
         wheelBase, mm (> 0).
     pose : array_like of whole numbers, shape (3,)
         Start (X_mm, Y_mm, orientation_mrad), firmware frame.
     carry : bool
         Carry the truncated fractions to the next update.
+    alpha_rounding : {"truncate", "source"}
+        How alpha becomes whole mrad: a C cast (toward zero), or the source code's two-stage
+        rounding (whole mm, then whole mrad).
 
     Returns
     -------
@@ -751,13 +790,31 @@ def firmware_fixed_point(increments, steps_per_mm, wheel_base_mm, pose=(0, 0, 0)
     >>> print(firmware_fixed_point(inc, 8.043, 85.0)[-1], firmware_fixed_point(inc, 8.043, 85.0,
     ...       carry=True)[-1])
     [ 0 90  0] [ 0 99  0]
+
+    On a left circle of 1 m radius the wheels differ by 6 to 8 steps (0.75 to 1 mm) per update,
+    8.8 to 11.7 mrad: truncated, 8 to 11 mrad; the source rounds each difference to 1 mm and
+    turns 1000/85 = 11.8, so 12 mrad; and on the mirrored right circle also +12 mrad:
+
+    >>> left = [[80, 87], [80, 86], [80, 88]]
+    >>> right = [[87, 80], [86, 80], [88, 80]]
+    >>> for rule in ("truncate", "source"):
+    ...     print(rule, [int(firmware_fixed_point(inc, 8.043, 85.0, alpha_rounding=rule)[-1, 2])
+    ...                  for inc in (left, right)])
+    truncate [29, -29]
+    source [36, 36]
     """
     inc = _whole("increments", _increments(increments))
     k = v.positive("steps_per_mm", steps_per_mm)
-    w = v.positive("wheel_base_mm", wheel_base_mm)
+    w = v.positive("track_width_mm", track_width_mm)
     p0 = _whole("pose", _pose(pose))
     if not isinstance(carry, bool | np.bool_):
         raise ValueError(f"carry must be True or False, got {carry!r}")
+    v.choice("alpha_rounding", alpha_rounding, ("truncate", "source"))
+    enc, base = round(1000.0 * k), round(w)
+    if alpha_rounding == "source" and (abs(1000.0 * k - enc) > 1e-6 or abs(w - base) > 1e-9):
+        raise ValueError("alpha_rounding='source' needs whole numbers, as in the firmware: "
+                         f"1000 * steps_per_mm (ENC, got {1000.0 * k!r}) and track_width_mm "
+                         f"(got {w!r})")
     x, y, orientation = (int(c) for c in p0)
     out = np.empty((len(inc), 3), dtype=np.int64)
     rest_alpha = rest_x = rest_y = 0.0
@@ -771,6 +828,8 @@ def firmware_fixed_point(increments, steps_per_mm, wheel_base_mm, pose=(0, 0, 0)
         else:
             distance = math.trunc(c_div(left + right, 2) / k)
             alpha = math.trunc((right - left) * alpha_scale)
+        if alpha_rounding == "source":
+            alpha = _div_round_up(_div_round_up(1000 * (right - left), enc) * 1000, base)
         orientation = _c_mod(orientation + alpha, FIRMWARE_TWO_PI_MRAD)
         heading = orientation / 1000.0
         dx = -distance * math.sin(heading)
@@ -872,7 +931,7 @@ def _covariance(value, name: str = "covariance") -> np.ndarray:
 
 
 def _arc_derivatives(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:math:`(a'(\\varphi), b'(\\varphi))` of the kernel's arc factors, exact at 0."""
+    r""":math:`(a'(\varphi), b'(\varphi))` of the kernel's arc factors, exact at 0."""
     small = np.abs(phi) < _ARC_THRESHOLD
     safe = np.where(small, 1.0, phi)
     a, b = _arc_factors(safe)
@@ -911,7 +970,7 @@ def _body(delta_left, delta_right, track_width: float):
     return 0.5 * (delta_left + delta_right), (delta_right - delta_left) / track_width
 
 
-def step_jacobians(pose, delta_left: float, delta_right: float,
+def step_jacobians(pose: ArrayLike, delta_left: float, delta_right: float,
                    track_width: float) -> StepJacobians:
     r"""The Jacobians of one exact-arc update with respect to the pose and the wheel travels.
 
@@ -1011,8 +1070,9 @@ def _turns(dth, track_width: float) -> None:
                          f"{track_width!r} m): check the units")
 
 
-def propagate_covariance(pose, covariance, delta_left: float, delta_right: float,
-                         track_width: float, k_left: float, k_right: float) -> PoseCovariance:
+def propagate_covariance(pose: ArrayLike, covariance: ArrayLike, delta_left: float,
+                         delta_right: float, track_width: float, k_left: float,
+                         k_right: float) -> PoseCovariance:
     r"""One exact-arc update of a pose and of its covariance, with random wheel errors.
 
     Each wheel's travel in the step has an independent, zero-mean error whose variance grows
@@ -1109,8 +1169,9 @@ def _path_poses(p0: np.ndarray, ds: np.ndarray, dth: np.ndarray) -> np.ndarray:
                      theta_after], axis=-1)
 
 
-def propagate_path(pose, covariance, delta_left, delta_right, track_width: float,
-                   k_left: float, k_right: float) -> PathCovariance:
+def propagate_path(pose: ArrayLike, covariance: ArrayLike, delta_left: ArrayLike,
+                   delta_right: ArrayLike, track_width: float, k_left: float,
+                   k_right: float) -> PathCovariance:
     r"""Propagate a pose and its covariance along a sequence of wheel increments.
 
     :func:`propagate_covariance` applied once per update:
@@ -1177,8 +1238,9 @@ def propagate_path(pose, covariance, delta_left, delta_right, track_width: float
 _MC_BLOCK = 256
 
 
-def monte_carlo_poses(pose, delta_left, delta_right, track_width: float, k_left: float,
-                      k_right: float, runs: int, rng, *, at=None) -> np.ndarray:
+def monte_carlo_poses(pose: ArrayLike, delta_left: ArrayLike, delta_right: ArrayLike,
+                      track_width: float, k_left: float, k_right: float, runs: int,
+                      rng: np.random.Generator, *, at: ArrayLike | None = None) -> np.ndarray:
     r"""Poses of ``runs`` noisy repetitions of a drive: the sampled counterpart of
     :func:`propagate_path`.
 
@@ -1218,9 +1280,9 @@ def monte_carlo_poses(pose, delta_left, delta_right, track_width: float, k_left:
     ...                          np.random.default_rng(1))
     >>> ends.shape
     (2000, 3)
-    >>> print(f"{ends[:, 2].std() * 1e3:.1f} mrad (propagated: "
-    ...       f"{np.sqrt(2e-6 * 1.0) / 0.085 * 1e3:.1f})")
-    16.6 mrad (propagated: 16.6)
+    >>> print(f"{ends[:, 2].std() * 1e3:.2f} mrad (propagated: "
+    ...       f"{np.sqrt(2e-6 * 1.0) / 0.085 * 1e3:.2f})")
+    16.67 mrad (propagated: 16.64)
     """
     p0 = _pose_si(pose)
     left, right = _increment_pair(delta_left, delta_right)
@@ -1256,7 +1318,7 @@ def monte_carlo_poses(pose, delta_left, delta_right, track_width: float, k_left:
     return out[0] if at is None else out
 
 
-def umbmark_correction(cw_end, ccw_end, side: float, track_width: float, *,
+def umbmark_correction(cw_end: ArrayLike, ccw_end: ArrayLike, side: float, track_width: float, *,
                        components: str = "xy") -> UmbmarkCorrection:
     r"""Borenstein and Feng's correction factors from the returns of the bidirectional square.
 

@@ -1,4 +1,4 @@
-"""The six-wheel, corner-steered rover of JPL's Open Source Rover (OSR).
+r"""The six-wheel, corner-steered rover of JPL's Open Source Rover (OSR).
 
 This module reproduces the rover's controller maths :cite:`osr_controls` in **the document's
 own convention**, so that its numbers can be checked one for one:
@@ -27,9 +27,9 @@ wheel i,
 
 .. math::
 
-    R_i = \\sqrt{x_i^2 + a_i^2}, \\qquad
-    V_i = X \\, \\operatorname{sgn}(a_i) \\frac{R_i}{|r| + d_4}, \\qquad
-    \\delta_i = \\arctan\\frac{x_i}{r + y_i}
+    R_i = \sqrt{x_i^2 + a_i^2}, \qquad
+    V_i = X \, \operatorname{sgn}(a_i) \frac{R_i}{|r| + d_4}, \qquad
+    \delta_i = \arctan\frac{x_i}{r + y_i}
 
 where ``X`` is the commanded speed, given to the outer middle wheel (``R = |r| + d4``). For
 ``r = 30`` in and ``X = 100`` this is the document's table, 96.59, 100, 96.59, 62.52, 49.73,
@@ -54,12 +54,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import Literal, NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate
+from wheelkin.frames import Twist
 from wheelkin.units import INCH
 
 __all__ = [
@@ -121,11 +122,19 @@ class RoverGeometry:
         Longitudinal distance from the body centre forward to the front corner wheels (> 0).
     d4 : float
         Lateral distance from the body centre to the two middle wheels (> 0).
+    unit : {"in", "m"}
+        The unit of d1..d4: inches (the document's, default) or metres. The SI functions
+        (:func:`wheel_commands`, :func:`wheelkin.unified.rover_wheels`) convert with
+        :meth:`in_unit`, so a geometry in either unit gives the same rover; the document's
+        functions (:func:`corner_angles`, :func:`wheel_speeds`, ...) work in the geometry's
+        unit.
 
     Examples
     --------
     >>> RoverGeometry(7.254, 10.5, 10.5, 10.073) == OSR_GEOMETRY
     True
+    >>> round(OSR_GEOMETRY.in_unit("m").d1, 6), OSR_GEOMETRY_SI.unit
+    (0.184252, 'm')
     >>> RoverGeometry(7.0, -1.0, 10.0, 10.0)
     Traceback (most recent call last):
     ...
@@ -136,17 +145,27 @@ class RoverGeometry:
     d2: float
     d3: float
     d4: float
+    unit: Literal["in", "m"] = "in"
 
     def __post_init__(self) -> None:
         for name in ("d1", "d2", "d3", "d4"):
             object.__setattr__(self, name, _validate.positive(name, getattr(self, name)))
+        _validate.choice("unit", self.unit, ("in", "m"))
+
+    def in_unit(self, unit: Literal["in", "m"]) -> RoverGeometry:
+        """The same geometry in ``unit`` ("in" or "m"); itself if already in it."""
+        _validate.choice("unit", unit, ("in", "m"))
+        if unit == self.unit:
+            return self
+        k = INCH if unit == "m" else 1.0 / INCH
+        return RoverGeometry(self.d1 * k, self.d2 * k, self.d3 * k, self.d4 * k, unit)
 
 
 #: The Open Source Rover's base model (inches), from the document's equation 5.
 OSR_GEOMETRY = RoverGeometry(d1=7.254, d2=10.5, d3=10.5, d4=10.073)
 #: The same rover in metres, for the SI functions (:func:`wheel_commands`).
 OSR_GEOMETRY_SI = RoverGeometry(d1=7.254 * INCH, d2=10.5 * INCH, d3=10.5 * INCH,
-                                d4=10.073 * INCH)
+                                d4=10.073 * INCH, unit="m")
 
 
 def _geometry(geometry) -> RoverGeometry:
@@ -176,12 +195,12 @@ def wheel_positions(geometry: RoverGeometry = OSR_GEOMETRY) -> np.ndarray:
 
 def min_turning_radius(geometry: RoverGeometry = OSR_GEOMETRY,
                        max_corner_angle: float = HARD_STOP) -> float:
-    """The tightest turn the corner hard stops allow (the geometry's unit).
+    r"""The tightest turn the corner hard stops allow (the geometry's unit).
 
     The inner corners steer the most; an inner corner at longitudinal distance ``d`` reaches
     the stop ``delta_max`` when ``tan(delta_max) = d / (r - d1)``, so
 
-    .. math:: r_{min} = d_1 + \\frac{\\max(d_2, d_3)}{\\tan \\delta_{max}}
+    .. math:: r_{min} = d_1 + \frac{\max(d_2, d_3)}{\tan \delta_{max}}
 
     (the document's equation 14 has ``d3`` only: there ``d2 = d3``).
 
@@ -207,13 +226,13 @@ def min_turning_radius(geometry: RoverGeometry = OSR_GEOMETRY,
 
 
 def outer_middle_is_fastest_above(geometry: RoverGeometry = OSR_GEOMETRY) -> float:
-    """The radius above which the outer middle wheel is the fastest of the six (the
+    r"""The radius above which the outer middle wheel is the fastest of the six (the
     geometry's unit; 0 if it always is).
 
     The outer corner at ``d`` (the larger of d2, d3) is farther from the ICR than the outer
     middle wheel when ``d^2 + (d1 + r)^2 > (d4 + r)^2``, that is (for ``d4 > d1``) when
 
-    .. math:: r < r^* = \\frac{1}{2}\\left(\\frac{d^2}{d_4 - d_1} - d_4 - d_1\\right)
+    .. math:: r < r^* = \frac{1}{2}\left(\frac{d^2}{d_4 - d_1} - d_4 - d_1\right)
 
     For ``d4 <= d1`` the outer corners are always farther: ``inf`` is returned.
 
@@ -261,11 +280,11 @@ def _threshold(straight_threshold) -> float:
     return float(t)
 
 
-def wheel_distances(radius, geometry: RoverGeometry = OSR_GEOMETRY, *,
+def wheel_distances(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY, *,
                     max_corner_angle: float = HARD_STOP) -> np.ndarray:
-    """Each wheel's distance ``R_i`` to the turning centre, wheels LF, LM, LB, RF, RM, RB.
+    r"""Each wheel's distance ``R_i`` to the turning centre, wheels LF, LM, LB, RF, RM, RB.
 
-    .. math:: R_i = \\sqrt{x_i^2 + (|r| + s\\,y_i)^2}, \\quad s = \\operatorname{sgn} r
+    .. math:: R_i = \sqrt{x_i^2 + (|r| + s\,y_i)^2}, \quad s = \operatorname{sgn} r
 
     For ``r > 0`` (right turn) these are the document's equations 4 and 7-12:
     ``R1 = sqrt(d3^2 + (d1 + r)^2)``, ``R2 = r + d4``, ``R3 = sqrt(d2^2 + (d1 + r)^2)``,
@@ -301,16 +320,16 @@ def wheel_distances(radius, geometry: RoverGeometry = OSR_GEOMETRY, *,
     return np.where(finite[..., None], dist, np.inf)
 
 
-def wheel_speeds(radius, speed, geometry: RoverGeometry = OSR_GEOMETRY,
+def wheel_speeds(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
                  straight_threshold: float = STRAIGHT_THRESHOLD, *,
                  max_corner_angle: float = HARD_STOP) -> np.ndarray:
-    """The six drive wheels' speeds, wheels LF, LM, LB, RF, RM, RB (the document's 1..6).
+    r"""The six drive wheels' speeds, wheels LF, LM, LB, RF, RM, RB (the document's 1..6).
 
     The outer middle wheel (LM in a right turn, RM in a left turn) gets ``speed``; every other
     wheel scales by its distance to the turning centre (S = R theta, the same theta for all):
 
-    .. math:: V_i = X \\operatorname{sgn}(a_i) \\frac{R_i}{|r| + d_4},
-              \\qquad a_i = |r| + s\\,y_i
+    .. math:: V_i = X \operatorname{sgn}(a_i) \frac{R_i}{|r| + d_4},
+              \qquad a_i = |r| + s\,y_i
 
     which for ``r > 0`` are the document's equations 7-12. The sign factor only matters for
     an inner middle wheel on the far side of the ICR (``|r| < d4``, possible for geometries
@@ -351,7 +370,7 @@ def wheel_speeds(radius, speed, geometry: RoverGeometry = OSR_GEOMETRY,
     r = _radius(radius, g, max_corner_angle)
     x = _validate.finite_array("speed", speed)
     threshold = _threshold(straight_threshold)
-    r, x = np.broadcast_arrays(r, x)
+    r, x = _validate.broadcast(radius=r, speed=x)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0e9, r)[..., None]  # placeholder, replaced below
     pos = wheel_positions(g)
@@ -360,14 +379,14 @@ def wheel_speeds(radius, speed, geometry: RoverGeometry = OSR_GEOMETRY,
     return x[..., None] * np.where(straight[..., None], 1.0, ratio)
 
 
-def corner_angles(radius, geometry: RoverGeometry = OSR_GEOMETRY,
+def corner_angles(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
                   straight_threshold: float = STRAIGHT_THRESHOLD, *,
                   max_corner_angle: float = HARD_STOP) -> np.ndarray:
-    """The four corner wheels' steering angles (rad), corners LF, RF, LB, RB.
+    r"""The four corner wheels' steering angles (rad), corners LF, RF, LB, RB.
 
     Each corner wheel rolls at right angles to the line from the ICR to it:
 
-    .. math:: \\delta_i = \\arctan\\frac{x_i}{r + y_i}
+    .. math:: \delta_i = \arctan\frac{x_i}{r + y_i}
 
     so for ``r > 0`` the inner front corner (RF) is the document's equation 16,
     ``arctan(d3 / (r - d1))``; the outer front is ``arctan(d3 / (r + d1))``, and the back
@@ -407,16 +426,16 @@ def corner_angles(radius, geometry: RoverGeometry = OSR_GEOMETRY,
     return np.where(straight[..., None], 0.0, angles)
 
 
-def centre_speed(radius, speed, geometry: RoverGeometry = OSR_GEOMETRY,
+def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
                  straight_threshold: float = STRAIGHT_THRESHOLD, *,
                  max_corner_angle: float = HARD_STOP) -> np.ndarray:
-    """Speed of the body centre (the "middle of the rover") when the outer middle wheel gets
+    r"""Speed of the body centre (the "middle of the rover") when the outer middle wheel gets
     ``speed``.
 
     The body centre is at distance ``|r|`` from the ICR, the outer middle wheel at
     ``|r| + d4``, so
 
-    .. math:: v = X \\frac{|r|}{|r| + d_4}
+    .. math:: v = X \frac{|r|}{|r| + d_4}
 
     and ``v = X`` when driving straight. At r = 30 in it is 74.86 % of the command, not 100 %.
 
@@ -431,14 +450,14 @@ def centre_speed(radius, speed, geometry: RoverGeometry = OSR_GEOMETRY,
     r = _radius(radius, g, max_corner_angle)
     x = _validate.finite_array("speed", speed)
     threshold = _threshold(straight_threshold)
-    r, x = np.broadcast_arrays(r, x)
+    r, x = _validate.broadcast(radius=r, speed=x)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0, np.abs(r))
     return x * np.where(straight, 1.0, rr / (rr + g.d4))
 
 
-def command_to_radius(command, *, mapping: str = "radius",
-                      geometry: RoverGeometry = OSR_GEOMETRY):
+def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
+                      geometry: RoverGeometry = OSR_GEOMETRY) -> float | NDArray[np.float64]:
     """The turning radius (in, document sign: > 0 right) for a joystick steering command.
 
     The document says only that the command runs from -100 to 100, negative turning left,
@@ -497,11 +516,11 @@ def command_to_radius(command, *, mapping: str = "radius",
     return float(out) if out.ndim == 0 else out
 
 
-def radius_to_command(radius):
-    """The joystick command whose linear-in-radius mapping gives ``radius`` (inverse of
+def radius_to_command(radius: ArrayLike) -> float | NDArray[np.float64]:
+    r"""The joystick command whose linear-in-radius mapping gives ``radius`` (inverse of
     :func:`command_to_radius` with ``mapping="radius"``).
 
-    .. math:: c = \\operatorname{sgn}(r) \\frac{250 - |r|}{2.3}
+    .. math:: c = \operatorname{sgn}(r) \frac{250 - |r|}{2.3}
 
     Parameters
     ----------
@@ -526,9 +545,9 @@ def radius_to_command(radius):
     return float(c) if c.ndim == 0 else c
 
 
-def body_twist(radius, speed_in_per_s, geometry: RoverGeometry = OSR_GEOMETRY,
+def body_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry = OSR_GEOMETRY,
                straight_threshold: float = STRAIGHT_THRESHOLD, *,
-               max_corner_angle: float = HARD_STOP):
+               max_corner_angle: float = HARD_STOP) -> Twist:
     """The body twist in **our** convention (SI, REP-103: x forward, y left, omega
     counter-clockwise) for a turn commanded in the document's convention.
 
@@ -556,7 +575,7 @@ def body_twist(radius, speed_in_per_s, geometry: RoverGeometry = OSR_GEOMETRY,
     """
     from wheelkin import frames
 
-    g = _geometry(geometry)
+    g = _geometry(geometry).in_unit("in")  # the document's command is in inches
     threshold = _threshold(straight_threshold)
     r = _scalar_radius(radius)
     x = _validate.finite("speed_in_per_s", speed_in_per_s)
@@ -566,7 +585,7 @@ def body_twist(radius, speed_in_per_s, geometry: RoverGeometry = OSR_GEOMETRY,
     return frames.rover_twist(r, v)
 
 
-def sandbox_commands(radius, speed_in_per_s, wheel_radius_in: float,
+def sandbox_commands(radius: float, speed_in_per_s: float, wheel_radius_in: float,
                      geometry: RoverGeometry = OSR_GEOMETRY,
                      straight_threshold: float = STRAIGHT_THRESHOLD, *,
                      max_corner_angle: float = HARD_STOP) -> tuple[np.ndarray, np.ndarray]:
@@ -593,6 +612,7 @@ def sandbox_commands(radius, speed_in_per_s, wheel_radius_in: float,
     w = _validate.positive("wheel_radius_in", wheel_radius_in)
     r = _scalar_radius(radius)
     x = _validate.finite("speed_in_per_s", speed_in_per_s)
+    geometry = _geometry(geometry).in_unit("in")  # the command is in inches
     speeds = wheel_speeds(r, x, geometry, straight_threshold, max_corner_angle=max_corner_angle)
     angles = corner_angles(r, geometry, straight_threshold, max_corner_angle=max_corner_angle)
     return speeds / w, -angles
@@ -664,7 +684,7 @@ def wheel_commands(v: ArrayLike, omega: ArrayLike,
     >>> np.round(np.degrees(cmd.steering_angles), 3)  # right turn: negative, to the right
     array([-15.74 , -24.779,  15.74 ,  24.779])
     """
-    g = _geometry(geometry)
+    g = _geometry(geometry).in_unit("m")
     stop = _validate.in_range("max_corner_angle", max_corner_angle, 0.0, math.pi / 2,
                               inclusive=False)
     v_a = _validate.finite_array("v", v)

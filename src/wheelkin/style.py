@@ -30,7 +30,7 @@ import os
 from typing import Any
 
 __all__ = ["CHECK_ENV", "COLUMN_WIDTH_IN", "DPI", "MIN_FONT_PT", "MIN_TEXT_PX", "FigureCheckError",
-           "assert_readable", "check_figure", "checking", "min_font_pt", "setup"]
+           "assert_readable", "check_figure", "checking", "fixed_layout", "min_font_pt", "setup"]
 
 #: Dots per inch of every figure and animation frame.
 DPI: int = 100
@@ -101,6 +101,31 @@ CHECK_ENV = "WHEELKIN_CHECK_FIGURES"
 _CHECKING = False
 
 
+def fixed_layout() -> Any:
+    """A layout engine for a figure laid out by hand (``subplots_adjust``, gridspec margins).
+
+    Pass it as ``Figure(..., layout=fixed_layout())``. Not ``layout="none"``: a figure without
+    an engine gets the book style's constrained layout back from its first ``savefig`` (which
+    restores "no engine" as the rc default), so a panel's or an animation's frames after the
+    first would move. A placeholder engine keeps the hand-set layout through every save.
+
+    Examples
+    --------
+    >>> import io, matplotlib
+    >>> from matplotlib.figure import Figure
+    >>> with matplotlib.rc_context({"figure.constrained_layout.use": True}):  # as setup()
+    ...     fig = Figure(figsize=(4, 3), layout=fixed_layout())
+    ...     ax = fig.add_subplot(111); fig.subplots_adjust(left=0.3)
+    ...     for _ in range(2):
+    ...         fig.savefig(io.BytesIO(), format="png")
+    >>> print(round(float(ax.get_position().x0), 2))
+    0.3
+    """
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    return PlaceHolderLayoutEngine(adjust_compatible=True, colorbar_gridspec=True)
+
+
 def checking() -> bool:
     """Whether shown figures are checked: :func:`setup` ran with :data:`CHECK_ENV` = ``1``."""
     return _CHECKING
@@ -120,15 +145,15 @@ def min_font_pt(fig: Any) -> float | None:
 
 
 def png_with_text(data: bytes, key: str, value: str) -> bytes:
-    """``data`` (a PNG) with a ``tEXt`` chunk ``key=value`` inserted after its header.
+    r"""``data`` (a PNG) with a ``tEXt`` chunk ``key=value`` inserted after its header.
 
     >>> import struct, zlib
     >>> ihdr = struct.pack(">IIBBBBB", 1, 1, 8, 0, 0, 0, 0)
     >>> def chunk(kind, body):
     ...     crc = zlib.crc32(kind + body)
     ...     return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", crc)
-    >>> png = b"\\x89PNG\\r\\n\\x1a\\n" + chunk(b"IHDR", ihdr) + chunk(b"IEND", b"")
-    >>> b"tEXtk\\x00v" in png_with_text(png, "k", "v")
+    >>> png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IEND", b"")
+    >>> b"tEXtk\x00v" in png_with_text(png, "k", "v")
     True
     """
     import struct

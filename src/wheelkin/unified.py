@@ -21,7 +21,7 @@ symbol                      meaning                                             
 :math:`\gamma_i`            Swedish wheels: signed angle from the wheel's axle   ``roller_angle``
                             to the axis of the roller touching the ground,
                             counter-clockwise seen from above, rad
-:math:`\varphi_i`           wheel angular rate, rad/s, positive rolling along
+:math:`\dot\varphi_i`       wheel angular rate, rad/s, positive rolling along
                             :math:`\mathbf e_i`
 ==========================  ===================================================  ============
 
@@ -40,12 +40,12 @@ so a direction :math:`\mathbf d` at wheel *i* gives the row
 :math:`\mathbf d^T P_i = (d_x,\ d_y,\ x_i d_y - y_i d_x)`. Then
 
 - *rolling* (every wheel, one row of :math:`J_1`): the contact velocity along the rolling
-  direction is the rim speed, :math:`\mathbf e_i^T P_i\,\xi = r_w\varphi_i`; for a Swedish
+  direction is the rim speed, :math:`\mathbf e_i^T P_i\,\xi = r_w\dot\varphi_i`; for a Swedish
   wheel only the velocity along the roller axis must come from the hub,
-  :math:`\mathbf u_i^T P_i\,\xi = r_w\varphi_i\,(\mathbf u_i\cdot\mathbf e_i)`, so its row is
+  :math:`\mathbf u_i^T P_i\,\xi = r_w\dot\varphi_i\,(\mathbf u_i\cdot\mathbf e_i)`, so its row is
   :math:`\mathbf u_i^T P_i / (\mathbf u_i\cdot\mathbf e_i)` with
   :math:`\mathbf u_i\cdot\mathbf e_i = -\sin\gamma_i`. We scale every row so that
-  :math:`J_1\,\xi = r_w\,\varphi` (wheel rim speeds, m/s).
+  :math:`J_1\,\xi = r_w\,\dot\varphi` (wheel rim speeds, m/s).
 - *no side slip* (fixed and steered wheels, one row of :math:`C_1`):
   :math:`\mathbf n_i^T P_i\,\xi = 0`. A Swedish wheel's rollers and a caster's swivel absorb
   any sideways velocity: they give no row.
@@ -65,8 +65,9 @@ Mobility :cite:`siegwart2011` (section 3.3): the degree of mobility
 
 The book's vehicles: :func:`rover_wheels` (from :class:`wheelkin.rover.RoverGeometry`),
 :func:`mecanum_wheels` (from :class:`wheelkin.mecanum.MecanumGeometry`),
-:func:`diff_drive_wheels`, :func:`skid_steer_wheels`; :func:`from_sandbox` reads a
-:class:`wheelkin.sandbox.VehicleSpec`, whose contact model imposes exactly these rows.
+:func:`diff_drive_wheels`, :func:`skid_steer_wheels`, :func:`car_wheels`. The sandbox
+(:class:`wheelkin.sandbox.VehicleSpec`) builds its vehicles from these wheels, and its contact
+model imposes these rows (:func:`roller_row` for a Swedish wheel: its rolling row in unit form).
 
 Conventions elsewhere: :mod:`wheelkin.mecanum`'s :math:`\gamma` is our :math:`|\gamma_i|`
 (X arrangement: :math:`\gamma_i = +\gamma` for FL and RR, :math:`-\gamma` for FR and RL);
@@ -91,10 +92,11 @@ from dataclasses import dataclass, replace
 from typing import NamedTuple
 
 import numpy as np
+import numpy.typing as npt
 
 from wheelkin import _validate as v
 from wheelkin import rover
-from wheelkin._kernels import shift_twist
+from wheelkin._kernels import point_row, roller_axis, shift_twist
 from wheelkin.frames import Twist, fold_half_turn
 from wheelkin.mecanum import ROLLER_SIGNS, MecanumGeometry
 from wheelkin.mecanum import WHEEL_NAMES as MECANUM_WHEEL_NAMES
@@ -109,9 +111,9 @@ __all__ = [
     "car_wheels",
     "constraint_matrix",
     "diff_drive_wheels",
-    "from_sandbox",
     "mecanum_wheels",
     "mobility",
+    "roller_row",
     "rolling_matrix",
     "rolling_row",
     "rover_wheels",
@@ -223,8 +225,7 @@ class WheelConstraint:
         if self.kind != "swedish":
             raise ValueError(f"roller_axis is defined for swedish wheels only, got a "
                              f"{self.kind!r} wheel ({self.name})")
-        a = self.direction + self.roller_angle
-        return np.array([-math.sin(a), math.cos(a)])
+        return np.array(roller_axis(self.direction, self.roller_angle))
 
     def steered_to(self, steering: float) -> WheelConstraint:
         """A copy with the steering angle ``steering`` (rad), validated again."""
@@ -262,9 +263,7 @@ def _twist(twist) -> np.ndarray:
 
 
 def _row(direction: np.ndarray, position: tuple[float, float]) -> np.ndarray:
-    x, y = position
-    dx, dy = float(direction[0]), float(direction[1])
-    return np.array([dx, dy, x * dy - y * dx]) + 0.0
+    return np.array(point_row(*position, float(direction[0]), float(direction[1]))) + 0.0
 
 
 def _rank(matrix: np.ndarray) -> int:
@@ -280,7 +279,7 @@ def _rank(matrix: np.ndarray) -> int:
 
 def rolling_row(wheel: WheelConstraint) -> np.ndarray:
     r"""The wheel's rolling-constraint row :math:`J_{1,i}`, with :math:`J_{1,i}\,\xi =
-    r_w\varphi_i` (the rim speed, m/s).
+    r_w\dot\varphi_i` (the rim speed, m/s).
 
     .. math::
 
@@ -315,9 +314,42 @@ def rolling_row(wheel: WheelConstraint) -> np.ndarray:
     """
     w = _wheel(wheel)
     if w.kind == "swedish":
-        u = w.roller_axis
-        return _row(u, w.position) / float(u @ w.rolling_direction)
+        return roller_row(w) / float(w.roller_axis @ w.rolling_direction)
     return _row(w.rolling_direction, w.position)
+
+
+def roller_row(wheel: WheelConstraint) -> np.ndarray:
+    r"""A Swedish wheel's roller row :math:`\mathbf u_i^T P_i`: the velocity of the contact
+    point along the ground roller's axis, the one velocity the wheel constrains.
+
+    .. math::
+
+        \mathbf u_i^T P_i\,\xi = r_w\dot\varphi_i\,(\mathbf u_i\cdot\mathbf e_i), \qquad
+        \mathbf u_i^T P_i = (-\sin(\psi_i+\gamma_i),\ \cos(\psi_i+\gamma_i),\
+        x_i\cos(\psi_i+\gamma_i) + y_i\sin(\psi_i+\gamma_i))
+
+    Its direction is a unit vector, so it is the row along which the ground pushes the wheel
+    (the sandbox's contact uses it); :func:`rolling_row` is the same row divided by
+    :math:`\mathbf u_i\cdot\mathbf e_i = -\sin\gamma_i`.
+
+    Parameters
+    ----------
+    wheel : WheelConstraint
+        A ``"swedish"`` wheel (``ValueError`` for any other kind).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3,)
+        Coefficients of :math:`(v_x, v_y, \omega)`: dimensionless, dimensionless, m.
+
+    Examples
+    --------
+    >>> w = WheelConstraint("FL", (0.2, 0.15), kind="swedish", roller_angle=math.pi / 4)
+    >>> np.round(roller_row(w) * math.sqrt(2), 12) + 0.0   # (-1, 1, a + b) / sqrt(2)
+    array([-1.  ,  1.  ,  0.35])
+    """
+    w = _wheel(wheel)
+    return _row(w.roller_axis, w.position)
 
 
 def sliding_row(wheel: WheelConstraint) -> np.ndarray:
@@ -353,10 +385,10 @@ def sliding_row(wheel: WheelConstraint) -> np.ndarray:
     return _row(w.lateral_direction, w.position)
 
 
-def rolling_matrix(wheels) -> np.ndarray:
+def rolling_matrix(wheels: Sequence[WheelConstraint]) -> np.ndarray:
     r""":math:`J_1`: the rolling rows of all wheels, in the given order, shape (n, 3).
 
-    :math:`J_1\,\xi = \operatorname{diag}(r_w)\,\varphi` (rim speeds, m/s).
+    :math:`J_1\,\xi = \operatorname{diag}(r_w)\,\dot\varphi` (rim speeds, m/s).
 
     Examples
     --------
@@ -367,7 +399,7 @@ def rolling_matrix(wheels) -> np.ndarray:
     return np.array([rolling_row(w) for w in _wheels(wheels)])
 
 
-def sliding_matrix(wheels) -> np.ndarray:
+def sliding_matrix(wheels: Sequence[WheelConstraint]) -> np.ndarray:
     r""":math:`C_1`: the no-side-slip rows of the fixed and steered wheels, in the given order,
     shape (m, 3) (m may be 0: no row for Swedish wheels and casters).
 
@@ -385,13 +417,13 @@ def sliding_matrix(wheels) -> np.ndarray:
     return np.array(rows).reshape(len(rows), 3)
 
 
-def constraint_matrix(wheels) -> np.ndarray:
+def constraint_matrix(wheels: Sequence[WheelConstraint]) -> np.ndarray:
     r"""The whole constraint matrix :math:`\begin{bmatrix} J_1 \\ C_1 \end{bmatrix}`, shape
     (n + m, 3): first one rolling row per wheel, then one sliding row per fixed or steered
     wheel, each group in the given wheel order, with
 
     .. math:: \begin{bmatrix} J_1 \\ C_1 \end{bmatrix} \xi =
-              \begin{bmatrix} \operatorname{diag}(r_w)\,\varphi \\ 0 \end{bmatrix}
+              \begin{bmatrix} \operatorname{diag}(r_w)\,\dot\varphi \\ 0 \end{bmatrix}
 
     (Siegwart et al.'s combined constraint equation, in the body frame).
 
@@ -411,13 +443,15 @@ def constraint_matrix(wheels) -> np.ndarray:
 # Using the model
 # --------------------------------------------------------------------------------------------
 
-def wheel_rates(wheels, twist, *, centre_of_rotation=None) -> np.ndarray:
-    r"""Wheel angular rates :math:`\varphi_i` (rad/s) for a body twist, from the rolling rows.
+def wheel_rates(wheels: Sequence[WheelConstraint], twist: Twist | npt.ArrayLike, *,
+                centre_of_rotation: npt.ArrayLike | None = None) -> np.ndarray:
+    r"""Wheel angular rates :math:`\dot\varphi_i` (rad/s) for a body twist, from the rolling rows.
 
-    .. math:: \varphi_i = \frac{J_{1,i}\,\xi}{r_{w,i}}
+    .. math:: \dot\varphi_i = \frac{J_{1,i}\,\xi}{r_{w,i}}
 
-    With a ``centre_of_rotation`` :math:`c` (as WPILib's and ros2_controllers' mecanum and
-    omni kinematics have), :math:`(v_x, v_y)` is the velocity of :math:`c` and the body turns
+    With a ``centre_of_rotation`` :math:`c` (as WPILib's mecanum kinematics have, and
+    ros2_controllers' mecanum controller through its ``base_frame_offset`` when that offset
+    is not rotated), :math:`(v_x, v_y)` is the velocity of :math:`c` and the body turns
     about it: the twist of the body origin is then
     :math:`\xi = (v_x + \omega c_y,\; v_y - \omega c_x,\; \omega)`.
 
@@ -457,7 +491,8 @@ def wheel_rates(wheels, twist, *, centre_of_rotation=None) -> np.ndarray:
     return (xi @ rolling_matrix(w).T) / radii
 
 
-def slip_residual(wheels, twist) -> np.ndarray:
+def slip_residual(wheels: Sequence[WheelConstraint],
+                  twist: Twist | npt.ArrayLike) -> np.ndarray:
     r"""How fast each wheel would have to slide sideways to follow the twist, m/s.
 
     .. math:: s_i = C_{1,i}\,\xi = \mathbf n_i \cdot (v_x - \omega y_i,\ v_y + \omega x_i)
@@ -490,13 +525,13 @@ def slip_residual(wheels, twist) -> np.ndarray:
     return xi @ rows.T + 0.0
 
 
-def body_twist(wheels, rates) -> np.ndarray:
+def body_twist(wheels: Sequence[WheelConstraint], rates: npt.ArrayLike) -> np.ndarray:
     r"""The body twist that best explains measured wheel rates (forward kinematics, odometry).
 
     Least squares on the rolling rows of the wheels that are not casters (a caster is not
     measured):
 
-    .. math:: \xi = J_1^{+}\,\operatorname{diag}(r_w)\,\varphi
+    .. math:: \xi = J_1^{+}\,\operatorname{diag}(r_w)\,\dot\varphi
 
     with :math:`J_1^{+}` the Moore-Penrose pseudo-inverse: exact when the rates are those of a
     twist; of several twists that explain them equally well (a differential drive cannot
@@ -507,7 +542,7 @@ def body_twist(wheels, rates) -> np.ndarray:
     ----------
     wheels : sequence of WheelConstraint
     rates : array_like, shape (..., n)
-        :math:`\varphi`, rad/s, in the wheels' order (casters' entries are ignored).
+        :math:`\dot\varphi`, rad/s, in the wheels' order (casters' entries are ignored).
 
     Returns
     -------
@@ -531,7 +566,8 @@ def body_twist(wheels, rates) -> np.ndarray:
     return (phi[..., measured] * radii) @ pinv.T + 0.0
 
 
-def steer_for_twist(wheels, twist) -> tuple[WheelConstraint, ...]:
+def steer_for_twist(wheels: Sequence[WheelConstraint],
+                    twist: Twist | npt.ArrayLike) -> tuple[WheelConstraint, ...]:
     r"""The wheels with every steered wheel and caster turned to roll along its contact
     velocity, so that the twist leaves them no sideways slip.
 
@@ -608,7 +644,7 @@ _GENERIC_STEERING = ((0.3183, -0.8776, 1.1348, 0.5403, -0.2322, 1.3817, -0.6536,
                      (0.8415, 1.4142, -0.3010, -1.1071, 0.6931, -0.7854, 0.1107, 1.2490))
 
 
-def mobility(wheels) -> Mobility:
+def mobility(wheels: Sequence[WheelConstraint]) -> Mobility:
     r"""Degrees of mobility, steerability and manoeuvrability of a wheel arrangement.
 
     Following Siegwart et al. :cite:`siegwart2011` (section 3.3):
@@ -667,7 +703,7 @@ def mobility(wheels) -> Mobility:
     return Mobility(delta_m, delta_s, delta_m + delta_s, rank_c1, rank_f, rank_s)
 
 
-def admissible_twists(wheels) -> np.ndarray:
+def admissible_twists(wheels: Sequence[WheelConstraint]) -> np.ndarray:
     r"""An orthonormal basis of the twists the wheels can follow without sliding sideways:
     the null space of :math:`C_1` at the current steering, shape (3, :math:`\delta_m`).
 
@@ -776,7 +812,7 @@ def skid_steer_wheels(half_track: float, half_wheelbase: float,
                                       ("RR", -1, -1)))
 
 
-def mecanum_wheels(geometry) -> tuple[WheelConstraint, ...]:
+def mecanum_wheels(geometry: MecanumGeometry) -> tuple[WheelConstraint, ...]:
     r"""The mecanum vehicle of :class:`wheelkin.mecanum.MecanumGeometry`: Swedish wheels FL,
     FR, RL, RR at :math:`(\pm a, \pm b)`, rollers in the X arrangement.
 
@@ -800,7 +836,7 @@ def mecanum_wheels(geometry) -> tuple[WheelConstraint, ...]:
                  for name, s in zip(MECANUM_WHEEL_NAMES, ROLLER_SIGNS, strict=True))
 
 
-def rover_wheels(geometry=None, wheel_radius: float = 0.06,
+def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: float = 0.06,
                  radius_in: float = math.inf) -> tuple[WheelConstraint, ...]:
     r"""The six-wheel rover of :class:`wheelkin.rover.RoverGeometry`, in metres and our sign.
 
@@ -813,7 +849,7 @@ def rover_wheels(geometry=None, wheel_radius: float = 0.06,
     Parameters
     ----------
     geometry : RoverGeometry, optional
-        In inches; default :data:`wheelkin.rover.OSR_GEOMETRY`.
+        In inches or metres (its ``unit``); default :data:`wheelkin.rover.OSR_GEOMETRY`.
     wheel_radius : float
         :math:`r_w`, m (> 0); the document gives none: 0.06 m is the sandbox's estimate.
     radius_in : float
@@ -829,6 +865,7 @@ def rover_wheels(geometry=None, wheel_radius: float = 0.06,
     g = rover.OSR_GEOMETRY if geometry is None else geometry
     if not isinstance(g, rover.RoverGeometry):
         raise ValueError(f"geometry must be a RoverGeometry, got {type(g).__name__}")
+    g = g.in_unit("in")  # the document's turn is in inches; positions below in metres
     r = v.positive("wheel_radius", wheel_radius)
     turn = v.finite_array("radius_in", radius_in, allow_inf=True)
     if turn.ndim != 0 or abs(float(turn)) < rover.min_turning_radius(g) * (1 - 1e-12):
@@ -873,53 +910,3 @@ def car_wheels(wheelbase: float, track_width: float, wheel_radius: float,
             WheelConstraint("FR", (L, -W / 2), 0.0, r, "steered", steering=float(right)),
             WheelConstraint("RL", (0.0, W / 2), 0.0, r, "fixed"),
             WheelConstraint("RR", (0.0, -W / 2), 0.0, r, "fixed"))
-
-
-def from_sandbox(spec, steering=None, *, casters: bool = True) -> tuple[WheelConstraint, ...]:
-    """The wheels of a sandbox vehicle (:class:`wheelkin.sandbox.VehicleSpec`) in this model.
-
-    The sandbox's ``Wheel`` carries the same geometry (position, ``heading``, radius,
-    ``roller_angle`` with the same sign convention) plus what physics needs (load, width);
-    its ``"mecanum"`` kind is our ``"swedish"``, and the steering, which the sandbox keeps in
-    the robot's state, is passed here.
-
-    Parameters
-    ----------
-    spec : VehicleSpec
-    steering : array_like, optional
-        Steering angles, rad, in ``spec.steered_names`` order (default 0).
-    casters : bool
-        Include the casters (False: exactly the driven wheels, in ``spec.wheel_names``
-        order, the order of the sandbox's wheel rates).
-
-    Examples
-    --------
-    >>> from wheelkin.sandbox import MECANUM_ROBOT
-    >>> [(w.kind, round(w.roller_angle, 4)) for w in from_sandbox(MECANUM_ROBOT)]
-    [('swedish', 0.7854), ('swedish', -0.7854), ('swedish', -0.7854), ('swedish', 0.7854)]
-    """
-    try:
-        sandbox_wheels = tuple(spec.wheels)
-        steered_names = tuple(spec.steered_names)
-    except (AttributeError, TypeError):
-        raise ValueError(f"spec must be a sandbox VehicleSpec, got {type(spec).__name__}"
-                         ) from None
-    if not isinstance(casters, bool):
-        raise ValueError(f"casters must be True or False, got {casters!r}")
-    k = len(steered_names)
-    angles = np.zeros(k) if steering is None else v.shaped("steering", steering, (k,))
-    if angles.shape != (k,):
-        raise ValueError(f"steering must have shape ({k},) ({', '.join(steered_names)}), "
-                         f"got shape {angles.shape}")
-    where = dict(zip(steered_names, angles.tolist(), strict=True))
-    kinds = {"mecanum": "swedish", "free": "steered"}  # a free-rolling wheel: steered
-    out = []
-    for wh in sandbox_wheels:
-        if wh.kind == "caster" and not casters:
-            continue
-        out.append(WheelConstraint(wh.name, wh.position, wh.heading, wh.radius,
-                                   kinds.get(wh.kind, wh.kind),
-                                   roller_angle=wh.roller_angle if wh.kind == "mecanum" else 0.0,
-                                   steering=where.get(wh.name, 0.0)))
-    return tuple(out)
-

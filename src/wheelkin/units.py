@@ -16,7 +16,7 @@ Constants are the size of one unit in SI, so ``30 * INCH`` is 30 inches in metre
 >>> to_si(1.0, "furlong")
 Traceback (most recent call last):
 ...
-ValueError: unit must be one of 'm', 'mm', 'in', 'ft', 'rad', 'mrad', 'deg', 'm/s', 'mm/s', \
+ValueError: unit must be one of 'm', 'mm', 'in', 'ft', 'rad', 'mrad', 'deg', 'm/s', 'mm/s',
 'in/s', 'ft/s', 'rad/s', 'mrad/s', 'deg/s', 'rpm'; got 'furlong'
 
 A motor's speed in revolutions per minute is a rate like any other:
@@ -32,6 +32,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as v
 
@@ -113,7 +114,7 @@ def _out(arr: np.ndarray):
     return float(arr) if arr.ndim == 0 else arr
 
 
-def to_si(value, unit: str):
+def to_si(value: ArrayLike, unit: str) -> float | NDArray[np.float64]:
     """Convert ``value`` from ``unit`` to SI (m, rad, m/s or rad/s).
 
     Parameters
@@ -140,7 +141,7 @@ def to_si(value, unit: str):
     return _out(_number_or_array("value", value) * factor)
 
 
-def from_si(value, unit: str):
+def from_si(value: ArrayLike, unit: str) -> float | NDArray[np.float64]:
     """Convert ``value`` from SI (m, rad, m/s or rad/s) to ``unit``; inverse of :func:`to_si`.
 
     Examples
@@ -154,7 +155,7 @@ def from_si(value, unit: str):
     return _out(_number_or_array("value", value) / factor)
 
 
-def convert(value, from_unit: str, to_unit: str):
+def convert(value: ArrayLike, from_unit: str, to_unit: str) -> float | NDArray[np.float64]:
     """Convert ``value`` between two units of the same kind (``ValueError`` if they differ).
 
     Examples
@@ -174,13 +175,14 @@ def convert(value, from_unit: str, to_unit: str):
     return _out(_number_or_array("value", value) * (f_from / f_to))
 
 
-def steps_per_m_from(counts_per_motor_rev, gear_ratio, wheel_circumference) -> float:
-    """Encoder steps per metre of wheel travel, from the encoder and the drive train.
+def steps_per_m_from(counts_per_motor_rev: float, gear_ratio: float,
+                     wheel_circumference: float) -> float:
+    r"""Encoder steps per metre of wheel travel, from the encoder and the drive train.
 
-    .. math:: \\mathrm{ENC} = \\frac{n_c \\, g}{C_w}
+    .. math:: \mathrm{ENC} = \frac{n_c \, g}{C_w}
 
     with :math:`n_c` encoder counts per revolution of the motor shaft, :math:`g` the gear ratio
-    (motor revolutions per wheel revolution) and :math:`C_w = 2 \\pi r_w` the wheel
+    (motor revolutions per wheel revolution) and :math:`C_w = 2 \pi r_w` the wheel
     circumference in metres. The result is exact (not rounded): firmware that stores it as an
     integer loses the fraction (see :data:`RADON_ULZER_STEPS_PER_M`).
 
@@ -223,13 +225,15 @@ def _metres_per_step(steps_per_m, steps_per_rev, wheel_radius) -> float:
     return 2.0 * math.pi * r / n
 
 
-def steps_to_distance(steps, *, steps_per_m=None, steps_per_rev=None, wheel_radius=None):
-    """Distance in metres travelled by a wheel for ``steps`` encoder steps.
+def steps_to_distance(steps: ArrayLike, *, steps_per_m: float | None = None,
+                      steps_per_rev: float | None = None,
+                      wheel_radius: float | None = None) -> float | NDArray[np.float64]:
+    r"""Distance in metres travelled by a wheel for ``steps`` encoder steps.
 
-    .. math:: d = \\frac{s}{\\mathrm{ENC}} \\quad\\text{or}\\quad
-              d = \\frac{s}{n_r} \\, 2 \\pi r_w
+    .. math:: d = \frac{s}{\mathrm{ENC}} \quad\text{or}\quad
+              d = \frac{s}{n_r} \, 2 \pi r_w
 
-    Give exactly one description of the encoder: ``steps_per_m`` (:math:`\\mathrm{ENC}`, steps
+    Give exactly one description of the encoder: ``steps_per_m`` (:math:`\mathrm{ENC}`, steps
     per metre), or ``steps_per_rev`` (:math:`n_r`, steps per wheel revolution) together with
     ``wheel_radius`` (:math:`r_w`, metres).
 
@@ -254,7 +258,9 @@ def steps_to_distance(steps, *, steps_per_m=None, steps_per_rev=None, wheel_radi
     return _out(v.finite_array("steps", steps) * per_step)
 
 
-def distance_to_steps(distance, *, steps_per_m=None, steps_per_rev=None, wheel_radius=None):
+def distance_to_steps(distance: ArrayLike, *, steps_per_m: float | None = None,
+                      steps_per_rev: float | None = None,
+                      wheel_radius: float | None = None) -> float | NDArray[np.float64]:
     """Encoder steps (not rounded) for a wheel travel of ``distance`` metres.
 
     Inverse of :func:`steps_to_distance`, with the same ways to describe the encoder. A real

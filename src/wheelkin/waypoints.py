@@ -1,4 +1,4 @@
-"""The Webots waypoint lab: the arena, the path, the open-loop schedule.
+r"""The Webots waypoint lab: the arena, the path, the open-loop schedule.
 
 The lab :cite:p:`webots_waypoint_lab` drives a four-wheeled differential-drive (skid-steer)
 robot through thirteen waypoints P0 .. P12 of a 4 m x 4 m maze, using straight legs, quarter
@@ -22,8 +22,8 @@ The pieces, in the order the chapter uses them:
 
 Symbols (the chapter's): :math:`r_w` wheel radius, :math:`d` half the axle (the lab's
 :math:`d_{mid}`, so the track is :math:`W = 2d`), :math:`R` the radius of a quarter circle
-described by the robot's centre, :math:`\\dot\\varphi` the wheel rate of the outer wheel (the
-lab's :math:`\\omega = 7.5` rad/s), :math:`v` forward speed, :math:`\\omega` yaw rate.
+described by the robot's centre, :math:`\dot\varphi` the wheel rate of the outer wheel (the
+lab's :math:`\omega = 7.5` rad/s), :math:`v` forward speed, :math:`\omega` yaw rate.
 
 >>> segments = plan_segments(LAB_WAYPOINTS)
 >>> [s.kind for s in segments[:7]]
@@ -41,6 +41,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin import _validate as v
 from wheelkin.diffdrive import wheel_speeds
@@ -200,7 +201,7 @@ class Segment:
                     self.centre[1] - self.radius * math.cos(theta))
         return x0, y0
 
-    def pose_at(self, fraction) -> np.ndarray:
+    def pose_at(self, fraction: ArrayLike) -> np.ndarray:
         """Poses (..., 3) at ``fraction`` in [0, 1] of the segment (of its length or angle).
 
         >>> s = plan_segments([[0, 0], [1, 0]])[0]
@@ -235,21 +236,21 @@ def _heading_of(d) -> float:
     return math.atan2(d[1], d[0])
 
 
-def plan_segments(waypoints, arc_radius: float | None = LAB_ARC_RADIUS,
+def plan_segments(waypoints: ArrayLike, arc_radius: float | None = LAB_ARC_RADIUS,
                   initial_heading: float | None = None) -> list[Segment]:
-    """The path through ``waypoints`` as straight legs, quarter circles and turns in place.
+    r"""The path through ``waypoints`` as straight legs, quarter circles and turns in place.
 
     The robot starts on the first waypoint, facing ``initial_heading``. For each next waypoint,
     its offset (f, l) in the robot's frame (f ahead, l to the left) decides the motion:
 
     - l = 0, f > 0 (straight ahead): a straight leg of length f.
-    - f = \\|l\\| = R with R = ``arc_radius`` (diagonally ahead, at the radius): a quarter
+    - f = \|l\| = R with R = ``arc_radius`` (diagonally ahead, at the radius): a quarter
       circle of radius R, to the left if l > 0, about the centre
-      :math:`(x, y) + R\\,\\mathrm{sign}(l)\\,(-\\sin\\theta, \\cos\\theta)`.
-    - anything else: a turn in place by :math:`\\operatorname{atan2}(l, f)` in (-pi, pi]
+      :math:`(x, y) + R\,\mathrm{sign}(l)\,(-\sin\theta, \cos\theta)`.
+    - anything else: a turn in place by :math:`\operatorname{atan2}(l, f)` in (-pi, pi]
       (a point straight behind gives +pi), then a straight leg.
 
-    A point diagonally ahead (f = \\|l\\|) at another distance than ``arc_radius`` is taken as a
+    A point diagonally ahead (f = \|l\|) at another distance than ``arc_radius`` is taken as a
     quarter circle that does not fit the radius, and raises ``ValueError``; pass
     ``arc_radius=None`` to plan no arcs at all (every change of direction a turn in place).
 
@@ -273,8 +274,8 @@ def plan_segments(waypoints, arc_radius: float | None = LAB_ARC_RADIUS,
 
     >>> segs = plan_segments([[0, 0], [1, 0], [1.5, 0.5], [2.5, 0.5]])
     >>> [(s.kind, round(s.length, 4), round(s.heading_change, 4)) for s in segs]
-    [('straight', 1.0, 0.0), ('arc', 0.7854, 1.5708), ('turn', 0.0, -1.5708), \
-('straight', 1.0, 0.0)]
+    [('straight', 1.0, 0.0), ('arc', 0.7854, 1.5708), ('turn', 0.0, -1.5708),
+     ('straight', 1.0, 0.0)]
     >>> segs[1].centre
     (1.0, 0.5)
     >>> plan_segments([[0, 0], [0, 0]])
@@ -350,7 +351,8 @@ def validate_segments(segments: Segment | Iterable[Segment]) -> list[Segment]:
     return segs
 
 
-def sample_path(segments, spacing: float = 0.01, turn_step: float = 0.05) -> np.ndarray:
+def sample_path(segments: Segment | Iterable[Segment], spacing: float = 0.01,
+                turn_step: float = 0.05) -> np.ndarray:
     """The plan as poses (N, 3): samples at most ``spacing`` m (``turn_step`` rad) apart.
 
     Consecutive segments share their end point once. Headings are continuous.
@@ -408,22 +410,22 @@ class WheelCommand:
         object.__setattr__(self, "duration", v.nonnegative("duration", self.duration))
 
 
-def schedule(segments, wheel_radius: float, half_axle: float,
+def schedule(segments: Segment | Iterable[Segment], wheel_radius: float, half_axle: float,
              wheel_rate: float = LAB_WHEEL_RATE) -> list[WheelCommand]:
-    """The lab's open-loop schedule: per segment, left and right wheel rates and a duration.
+    r"""The lab's open-loop schedule: per segment, left and right wheel rates and a duration.
 
-    The outer wheel turns at :math:`\\dot\\varphi` = ``wheel_rate`` (both wheels on a straight
+    The outer wheel turns at :math:`\dot\varphi` = ``wheel_rate`` (both wheels on a straight
     leg; both, in opposite senses, in a turn in place), so its rim speed is
-    :math:`V = r_w \\dot\\varphi`. With :math:`d` = ``half_axle``:
+    :math:`V = r_w \dot\varphi`. With :math:`d` = ``half_axle``:
 
-    - straight, length L: :math:`\\dot\\varphi_L = \\dot\\varphi_R = \\dot\\varphi`,
+    - straight, length L: :math:`\dot\varphi_L = \dot\varphi_R = \dot\varphi`,
       :math:`t = L / V`.
-    - quarter circle of radius R: yaw rate :math:`\\Omega = V / (R + d)` (the outer wheel is
-      on the circle of radius R + d), inner wheel :math:`\\dot\\varphi (R - d) / (R + d)`,
-      :math:`t = (\\pi/2)(R + d) / V`; the inner wheel is the left one on a left turn.
-    - turn in place by :math:`\\Delta\\theta`: :math:`\\dot\\varphi_R = -\\dot\\varphi_L =
-      \\mathrm{sign}(\\Delta\\theta)\\,\\dot\\varphi`, :math:`t = |\\Delta\\theta|\\, d / V`
-      (each wheel rolls :math:`|\\Delta\\theta|\\, d`, the lab's :math:`d_{rotate}`).
+    - quarter circle of radius R: yaw rate :math:`\Omega = V / (R + d)` (the outer wheel is
+      on the circle of radius R + d), inner wheel :math:`\dot\varphi (R - d) / (R + d)`,
+      :math:`t = (\pi/2)(R + d) / V`; the inner wheel is the left one on a left turn.
+    - turn in place by :math:`\Delta\theta`: :math:`\dot\varphi_R = -\dot\varphi_L =
+      \mathrm{sign}(\Delta\theta)\,\dot\varphi`, :math:`t = |\Delta\theta|\, d / V`
+      (each wheel rolls :math:`|\Delta\theta|\, d`, the lab's :math:`d_{rotate}`).
 
     The left and right rates come from the body twist (v, omega) through the differential
     drive's inverse kinematics with track :math:`W = 2d` (``wheelkin.diffdrive``).
@@ -437,7 +439,7 @@ def schedule(segments, wheel_radius: float, half_axle: float,
     half_axle : float
         :math:`d` (m), > 0: half the distance between the left and right wheels.
     wheel_rate : float
-        :math:`\\dot\\varphi` (rad/s), > 0; the lab's 7.5 rad/s.
+        :math:`\dot\varphi` (rad/s), > 0; the lab's 7.5 rad/s.
 
     Returns
     -------
@@ -475,7 +477,7 @@ def schedule(segments, wheel_radius: float, half_axle: float,
     return out
 
 
-def schedule_times(commands) -> np.ndarray:
+def schedule_times(commands: Iterable[WheelCommand]) -> np.ndarray:
     """Start time of each command and the end of the last, shape (len(commands) + 1,) (s).
 
     >>> cmds = schedule(plan_segments([[0, 0], [0.3, 0], [0.3, 0.3]]), 0.04, 0.06)
@@ -486,7 +488,7 @@ def schedule_times(commands) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum([c.duration for c in cmds])])
 
 
-def planned_pose(commands, t) -> np.ndarray:
+def planned_pose(commands: Iterable[WheelCommand], t: ArrayLike) -> np.ndarray:
     """Pose (..., 3) of an ideal (non-slipping) robot playing ``commands`` at times ``t`` (s).
 
     Before 0 it is the first segment's start, after the last command the last one's end.
@@ -508,7 +510,7 @@ def planned_pose(commands, t) -> np.ndarray:
     return out
 
 
-def planned_wheel_angles(commands, t) -> np.ndarray:
+def planned_wheel_angles(commands: Iterable[WheelCommand], t: ArrayLike) -> np.ndarray:
     """Cumulative wheel angles (..., 2), columns (left, right), in rad, of ``commands`` at
     times ``t`` (s): the integral of the scheduled rates, held after the last command.
 
@@ -536,12 +538,12 @@ def validate_commands(commands: Iterable[WheelCommand]) -> list[WheelCommand]:
     return cmds
 
 
-def quantise(commands, period: float) -> list[WheelCommand]:
-    """``commands`` with each duration rounded up to a whole number of control periods.
+def quantise(commands: Iterable[WheelCommand], period: float) -> list[WheelCommand]:
+    r"""``commands`` with each duration rounded up to a whole number of control periods.
 
     A controller that switches commands only at its time steps (a Webots controller's
     ``robot.step(timestep)`` loop, run until the time is up) holds each command for
-    :math:`\\lceil t / T \\rceil T`.
+    :math:`\lceil t / T \rceil T`.
 
     >>> cmds = schedule(plan_segments([[0, 0], [0.3, 0], [0.3, 0.3]]), 0.04, 0.06)
     >>> [round(c.duration, 3) for c in quantise(cmds, 0.064)]
@@ -557,18 +559,19 @@ def quantise(commands, period: float) -> list[WheelCommand]:
     return out
 
 
-def average_encoder_odometry(wheel_angles, wheel_radius: float, half_axle: float,
-                             pose=(0.0, 0.0, 0.0), heading=None) -> np.ndarray:
-    """The lab's position update, with the pieces it leaves out filled in.
+def average_encoder_odometry(wheel_angles: ArrayLike, wheel_radius: float, half_axle: float,
+                             pose: ArrayLike = (0.0, 0.0, 0.0),
+                             heading: ArrayLike | None = None) -> np.ndarray:
+    r"""The lab's position update, with the pieces it leaves out filled in.
 
     The lab averages the four wheels' encoders and updates
-    :math:`x = x_0 + \\Delta x\\cos\\theta`, :math:`y = y_0 + \\Delta x\\sin\\theta`. To work,
-    :math:`\\Delta x` must be the *increment* of that average since the last update, in metres:
+    :math:`x = x_0 + \Delta x\cos\theta`, :math:`y = y_0 + \Delta x\sin\theta`. To work,
+    :math:`\Delta x` must be the *increment* of that average since the last update, in metres:
 
-    .. math:: \\Delta s_k = r_w\\,\\tfrac14 \\sum_{i} (\\varphi_{i,k} - \\varphi_{i,k-1}),
+    .. math:: \Delta s_k = r_w\,\tfrac14 \sum_{i} (\varphi_{i,k} - \varphi_{i,k-1}),
 
     and the heading needs a source the lab does not name: here the wheels,
-    :math:`\\theta_k = \\theta_{k-1} + r_w(\\Delta\\bar\\varphi_R - \\Delta\\bar\\varphi_L)/(2d)`
+    :math:`\theta_k = \theta_{k-1} + r_w(\Delta\bar\varphi_R - \Delta\bar\varphi_L)/(2d)`
     (side averages), unless ``heading`` is given (a compass). The position update uses the
     heading at the start of the step (Euler), as the lab's equations are written.
 
@@ -624,7 +627,7 @@ def average_encoder_odometry(wheel_angles, wheel_radius: float, half_axle: float
     return np.stack([x, y, theta], axis=1)
 
 
-def distance_to_walls(points, walls=LAB_WALLS) -> np.ndarray:
+def distance_to_walls(points: ArrayLike, walls: ArrayLike = LAB_WALLS) -> np.ndarray:
     """Distance (m) from each point (..., 2) to the nearest wall segment.
 
     >>> distance_to_walls([[0.0, 0.5], [1.5, -1.5]]).tolist()
@@ -643,7 +646,7 @@ def distance_to_walls(points, walls=LAB_WALLS) -> np.ndarray:
     return np.min(np.linalg.norm(p[..., None, :] - nearest, axis=-1), axis=-1)
 
 
-def waypoint_errors(path, waypoints=LAB_WAYPOINTS) -> np.ndarray:
+def waypoint_errors(path: ArrayLike, waypoints: ArrayLike = LAB_WAYPOINTS) -> np.ndarray:
     """For each waypoint, the closest approach (m) of ``path`` (N, 2 or 3) to it.
 
     >>> waypoint_errors([[0, 0], [1, 0], [2, 0]], [[1, 0.1], [2, 0]]).round(3).tolist()

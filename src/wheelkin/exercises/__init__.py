@@ -29,6 +29,7 @@ import itertools
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -67,7 +68,7 @@ UNIT_FACTORS: tuple[tuple[float, str], ...] = (
 _REGISTRY: dict[str, Exercise] = {}
 #: Modules of this package that hold a chapter's exercises (imported on first lookup).
 CHAPTER_MODULES = ("conventions", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
-                   "unified", "carlike")
+                   "unified", "carlike", "sandbox")
 
 
 @dataclass(frozen=True)
@@ -179,6 +180,23 @@ class Exercise:
     def _fail(self, kind: str, text: str) -> CheckResult:
         return CheckResult(self.name, False, f"✘ {self.name}: {text}", kind)
 
+    def _answer(self, fn: Callable, case: Case, where: str) -> Any:
+        """The student's answer to one case (on copies of its arguments), or the
+        :class:`CheckResult` that says why there is none: not written, raised, returned None."""
+        try:
+            raw = fn(*copy.deepcopy(case.args), **copy.deepcopy(case.kwargs))
+        except NotImplementedError:
+            return self._fail("not-written", "not written yet: replace the "
+                              "line 'raise NotImplementedError' with your code, then run the "
+                              "check again.")
+        except Exception as exc:
+            return self._fail("raised",
+                              f"for {where} your function raised {type(exc).__name__}: {exc}")
+        if raw is None:
+            return self._fail("shape", f"for {where} your function returned None: did you "
+                              "forget the 'return'?")
+        return raw
+
     def check(self, fn: Callable) -> CheckResult:
         """Try ``fn`` on every case; return the first problem found, or a pass."""
         if not callable(fn):
@@ -186,19 +204,9 @@ class Exercise:
         for case in self.cases:
             where = case.describe(self.arg_names)
             expected = _as_array(self.reference(*case.args, **case.kwargs))
-            args, kwargs = copy.deepcopy(case.args), copy.deepcopy(case.kwargs)
-            try:
-                raw = fn(*args, **kwargs)
-            except NotImplementedError:
-                return self._fail("not-written", "not written yet: replace the "
-                                  "`raise NotImplementedError` with your code, then run the "
-                                  "check again.")
-            except Exception as exc:
-                return self._fail("raised",
-                                  f"for {where} your function raised {type(exc).__name__}: {exc}")
-            if raw is None:
-                return self._fail("shape", f"for {where} your function returned None: did you "
-                                  "forget the `return`?")
+            raw = self._answer(fn, case, where)
+            if isinstance(raw, CheckResult):
+                return raw
             try:
                 got = _as_array(raw)
             except (TypeError, ValueError):

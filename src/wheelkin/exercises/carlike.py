@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from wheelkin import carlike
 from wheelkin.exercises import Case, Exercise
@@ -27,7 +28,7 @@ __all__ = ["best_arm_angle", "front_wheel_angles", "pursuit_steering", "rover_ra
 
 # ------------------------------------------------------------------ 1. Ackermann angles
 
-def front_wheel_angles(R, L, W):
+def front_wheel_angles(R: float, L: float, W: float) -> NDArray[np.float64]:
     """(left, right) front wheel angles (rad) of an ideal Ackermann car turning with radius R
     (m, > 0 left) of its rear-axle midpoint."""
     return np.array(carlike.ackermann_angles(R, L, W))
@@ -69,7 +70,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 2. tightest turn
 
-def tightest_radius(max_inner_deg, L, W):
+def tightest_radius(max_inner_deg: float, L: float, W: float) -> float:
     """Smallest turning radius (m) of the rear-axle midpoint of an Ackermann car whose inner
     front wheel can turn at most max_inner_deg degrees."""
     return float(carlike.minimum_radius(math.radians(max_inner_deg), L, W))
@@ -101,7 +102,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 3. pure pursuit
 
-def pursuit_steering(x, y, L):
+def pursuit_steering(x: float, y: float, L: float) -> float:
     """The bicycle steering angle (rad) that pure pursuit commands for the look-ahead point
     (x, y) (m, rear-axle frame, y left); wheelbase L (m)."""
     return float(carlike.steering_from_curvature(carlike.pure_pursuit_curvature(x, y), L))
@@ -140,7 +141,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 4. rover against car
 
-def rover_radius_ratio(max_deg, length, half_track):
+def rover_radius_ratio(max_deg: float, length: float, half_track: float) -> float:
     """Ratio of the tightest turn of a four-corner-steered vehicle (turning centre on the
     middle axle line, corners length/2 ahead and behind) to that of a car of the same
     wheelbase (length) and track (2 * half_track), both radii of the body's centre line on
@@ -177,7 +178,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 5. design: linkage
 
-def best_arm_angle(L, W, arm_length, max_inner_deg):
+def best_arm_angle(L: float, W: float, arm_length: float, max_inner_deg: float) -> float:
     """Design: the arm angle (rad) of a trapezoidal linkage that makes the worst Ackermann
     error over inner angles 0..max_inner_deg as small as possible."""
     return carlike.optimal_arm_angle(L, W, arm_length, math.radians(max_inner_deg)).arm_angle

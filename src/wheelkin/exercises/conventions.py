@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import frames, units
 from wheelkin.exercises import Case, Exercise
@@ -26,7 +27,7 @@ __all__ = ["encoder_steps_to_metres", "firmware_pose", "heading_error", "icr_of"
 
 # ------------------------------------------------------------------ 1. rover turning radius
 
-def rover_radius(radius_in):
+def rover_radius(radius_in: float) -> float:
     """The rover document's turning radius (inches, > 0 turns right) as ours (m, > 0 left)."""
     return frames.rover_radius_to_ours(radius_in)
 
@@ -51,7 +52,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 2. firmware pose
 
-def firmware_pose(X_mm, Y_mm, theta):
+def firmware_pose(X_mm: float, Y_mm: float, theta: float) -> NDArray[np.float64]:
     """The firmware's pose (mm, mm, rad; X right, Y forward, theta CCW from +Y) as our
     ``[x, y, theta]`` in metres and radians."""
     return frames.firmware_pose_to_ours(X_mm, Y_mm, theta).as_array()
@@ -87,7 +88,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 3. the ICR of a twist
 
-def icr_of(vx, vy, omega):
+def icr_of(vx: float, vy: float, omega: float) -> np.ndarray:
     """The ICR ``[x, y]`` (m, body frame) of the twist (vx, vy, omega), omega != 0."""
     return np.array(frames.icr(frames.Twist(vx, vy, omega)))
 
@@ -115,7 +116,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 4. encoder steps
 
-def encoder_steps_to_metres(steps):
+def encoder_steps_to_metres(steps: float) -> float:
     """Distance (m) of ``steps`` encoder steps of the Radon Ulzer (12 counts per motor
     revolution, 75.81:1 gear, 0.113097 m wheel circumference), without rounding."""
     per_m = units.steps_per_m_from(units.RADON_ULZER_COUNTS_PER_MOTOR_REV,
@@ -147,7 +148,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 5. mecanum twist
 
-def mecanum_twist(Vx_ftps, Vy_ftps, omega):
+def mecanum_twist(Vx_ftps: float, Vy_ftps: float, omega: float) -> NDArray[np.float64]:
     """The mecanum simulator's body twist (ft/s right, ft/s forward, rad/s) as our
     ``[vx, vy, omega]`` (m/s, m/s, rad/s)."""
     return frames.mecanum_doc_twist_to_ours(Vx_ftps, Vy_ftps, omega).as_array()
@@ -180,7 +181,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 6. a heading error (judgement)
 
-def heading_error(theta_odometry, theta_true):
+def heading_error(theta_odometry: ArrayLike, theta_true: ArrayLike) -> float:
     """The signed error (rad) of the final heading, keeping whole turns: both series (wrapped
     to (-pi, pi], sampled so that no step exceeds a quarter turn) are unwrapped, then the
     last samples subtracted, odometry minus truth.

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin.exercises import Case, Exercise
 from wheelkin.mecanum import MecanumGeometry, forward_kinematics, inverse_kinematics
@@ -28,7 +29,7 @@ _ROLLERS = np.array([-1.0, 1.0, 1.0, -1.0])
 
 # --- 1. a pure strafe ---------------------------------------------------------------------
 
-def strafe_rates(speed, wheel_radius):
+def strafe_rates(speed: float, wheel_radius: float) -> np.ndarray:
     """Wheel rates (FL, FR, RL, RR), rad/s, that strafe left at ``speed`` m/s (45° rollers)."""
     # The half wheelbase and half track do not matter for a pure strafe (omega = 0).
     return inverse_kinematics(0.0, speed, 0.0, MecanumGeometry(wheel_radius, 1.0, 1.0))
@@ -57,7 +58,8 @@ Exercise(
 
 # --- 2. the twist from four wheel rates ------------------------------------------------------
 
-def twist_from_rates(rates, wheel_radius, half_wheelbase, half_track):
+def twist_from_rates(rates: ArrayLike, wheel_radius: float, half_wheelbase: float,
+                     half_track: float) -> np.ndarray:
     """The body twist (vx m/s, vy m/s, omega rad/s) from wheel rates FL, FR, RL, RR (rad/s)."""
     g = MecanumGeometry(wheel_radius, half_wheelbase, half_track)
     return forward_kinematics(rates, g)
@@ -105,7 +107,8 @@ Exercise(
 
 # --- 3. 60-degree rollers --------------------------------------------------------------------
 
-def rates_60(vx, vy, omega, wheel_radius, half_wheelbase, half_track):
+def rates_60(vx: float, vy: float, omega: float, wheel_radius: float, half_wheelbase: float,
+             half_track: float) -> np.ndarray:
     """Wheel rates FL, FR, RL, RR (rad/s) for rollers at 60 degrees to the axle."""
     g = MecanumGeometry(wheel_radius, half_wheelbase, half_track, roller_angle=math.pi / 3)
     return inverse_kinematics(vx, vy, omega, g)
@@ -154,7 +157,7 @@ Exercise(
 
 # --- 4. the fastest spin ---------------------------------------------------------------------
 
-def max_spin_rate(max_rim_speed, half_wheelbase, half_track):
+def max_spin_rate(max_rim_speed: float, half_wheelbase: float, half_track: float) -> float:
     """The fastest spin on the spot (rad/s) if no wheel rim may exceed ``max_rim_speed`` m/s."""
     return max_rim_speed / (half_wheelbase + half_track)
 
@@ -199,7 +202,8 @@ def _uses(angle_deg, strafe_speed, side_accel, max_rim_speed, mu, gravity=9.81):
     return speed_use, grip_use
 
 
-def choose_roller_angle(strafe_speed, side_accel, max_rim_speed, mu):
+def choose_roller_angle(strafe_speed: float, side_accel: float, max_rim_speed: float,
+                        mu: float) -> float:
     """The roller angle (deg) among 30, 45, 60 that strafes at ``strafe_speed`` m/s and
     accelerates sideways at ``side_accel`` m/s² with the most margin (the smallest of the
     larger of its two uses); 0 if none can."""

@@ -3,7 +3,8 @@
 - ``odometry.center_and_turn``: Δs and Δθ of one update from the encoder increments.
 - ``odometry.midpoint_step``: one midpoint update of the pose (our frame).
 - ``odometry.exact_step``: one exact (arc) update, which must also work for Δθ = 0.
-- ``odometry.alpha_mrad``: the README's "improvement", whole mrad with C truncation.
+- ``odometry.alpha_mrad``: the README's "improvement" in whole mrad, as a naive C port
+  computes it (a cast, which truncates toward zero).
 - ``odometry.choose_update``: a design: the cheapest update rule (1 Euler, 2 midpoint,
   3 exact arc) that keeps the error after half a circle within a budget.
 """
@@ -11,6 +12,8 @@
 from __future__ import annotations
 
 import math
+
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import odometry as odo
 from wheelkin.exercises import Case, Exercise
@@ -21,54 +24,57 @@ _K = 8.043  # Radon Ulzer: steps per mm
 _W = 85.0  # Radon Ulzer: track width W (wheel to wheel, side to side), mm
 
 
-def center_and_turn(n_left, n_right, steps_per_mm, track_mm):
+def center_and_turn(n_left: float, n_right: float, steps_per_mm: float,
+                    track_mm: float) -> tuple[float, float]:
     """(Δs in mm, Δθ in rad) for one update with ``n_left``, ``n_right`` encoder steps."""
     ds, dth = odo.body_increments([[n_left, n_right]], steps_per_mm, track_mm)
     return (float(ds[0]), float(dth[0]))
 
 
-def midpoint_step(x, y, theta, distance, dtheta):
+def midpoint_step(x: float, y: float, theta: float, distance: float,
+                  dtheta: float) -> tuple[float, ...]:
     """(x', y', θ') after one midpoint update (our frame, x forward, θ counter-clockwise)."""
     return tuple(odo.pose_update([x, y, theta], distance, dtheta, "midpoint").tolist())
 
 
-def exact_step(x, y, theta, distance, dtheta):
+def exact_step(x: float, y: float, theta: float, distance: float,
+               dtheta: float) -> tuple[float, ...]:
     """(x', y', θ') after one exact arc update; Δθ may be zero."""
     return tuple(odo.pose_update([x, y, theta], distance, dtheta, "exact").tolist())
 
 
-def alpha_mrad(n_left, n_right, steps_per_mm, track_mm):
+def alpha_mrad(n_left: float, n_right: float, steps_per_mm: float, track_mm: float) -> int:
     """The README's alpha in whole mrad, truncated toward zero as a C cast does."""
     return math.trunc(1000.0 * (n_right - n_left) / (steps_per_mm * track_mm))
 
 
-def _readme_center(n_left, n_right, steps_per_mm, wheel_base_mm):
+def _readme_center(n_left, n_right, steps_per_mm, track_width_mm):
     return ((n_left - n_right) / 2 / steps_per_mm,
-            (n_right - n_left) / (steps_per_mm * wheel_base_mm))
+            (n_right - n_left) / (steps_per_mm * track_width_mm))
 
 
-def _sum_not_halved(n_left, n_right, steps_per_mm, wheel_base_mm):
+def _sum_not_halved(n_left, n_right, steps_per_mm, track_width_mm):
     return ((n_left + n_right) / steps_per_mm,
-            (n_right - n_left) / (steps_per_mm * wheel_base_mm))
+            (n_right - n_left) / (steps_per_mm * track_width_mm))
 
 
-def _half_base(n_left, n_right, steps_per_mm, wheel_base_mm):
+def _half_base(n_left, n_right, steps_per_mm, track_width_mm):
     return ((n_left + n_right) / 2 / steps_per_mm,
-            2 * (n_right - n_left) / (steps_per_mm * wheel_base_mm))
+            2 * (n_right - n_left) / (steps_per_mm * track_width_mm))
 
 
-def _turn_sign(n_left, n_right, steps_per_mm, wheel_base_mm):
+def _turn_sign(n_left, n_right, steps_per_mm, track_width_mm):
     return ((n_left + n_right) / 2 / steps_per_mm,
-            (n_left - n_right) / (steps_per_mm * wheel_base_mm))
+            (n_left - n_right) / (steps_per_mm * track_width_mm))
 
 
-def _turn_mrad(n_left, n_right, steps_per_mm, wheel_base_mm):
+def _turn_mrad(n_left, n_right, steps_per_mm, track_width_mm):
     return ((n_left + n_right) / 2 / steps_per_mm,
-            1000 * (n_right - n_left) / (steps_per_mm * wheel_base_mm))
+            1000 * (n_right - n_left) / (steps_per_mm * track_width_mm))
 
 
-def _no_mm(n_left, n_right, steps_per_mm, wheel_base_mm):
-    return ((n_left + n_right) / 2, (n_right - n_left) / wheel_base_mm)
+def _no_mm(n_left, n_right, steps_per_mm, track_width_mm):
+    return ((n_left + n_right) / 2, (n_right - n_left) / track_width_mm)
 
 
 Exercise(
@@ -174,22 +180,23 @@ Exercise(
 )
 
 
-def _alpha_rounded(n_left, n_right, steps_per_mm, wheel_base_mm):
-    return round(1000.0 * (n_right - n_left) / (steps_per_mm * wheel_base_mm))
+def _alpha_rounded(n_left, n_right, steps_per_mm, track_width_mm):
+    return round(1000.0 * (n_right - n_left) / (steps_per_mm * track_width_mm))
 
 
-def _alpha_floor(n_left, n_right, steps_per_mm, wheel_base_mm):
-    return math.floor(1000.0 * (n_right - n_left) / (steps_per_mm * wheel_base_mm))
+def _alpha_floor(n_left, n_right, steps_per_mm, track_width_mm):
+    return math.floor(1000.0 * (n_right - n_left) / (steps_per_mm * track_width_mm))
 
 
-def _alpha_float(n_left, n_right, steps_per_mm, wheel_base_mm):
-    return 1000.0 * (n_right - n_left) / (steps_per_mm * wheel_base_mm)
+def _alpha_float(n_left, n_right, steps_per_mm, track_width_mm):
+    return 1000.0 * (n_right - n_left) / (steps_per_mm * track_width_mm)
 
 
 Exercise(
     "odometry.alpha_mrad",
     "The README's improvement: return alpha = 1000 (R − L)/(steps_per_mm · wheelBase) as a whole "
-    "number of mrad, converted to an integer the way C does (int32_t alpha = ...); wheelBase "
+    "number of mrad, converted to an integer as a naive C port does (a cast: int32_t alpha = "
+    "...); wheelBase "
     "is the README's name for the track width W.",
     alpha_mrad,
     [Case((0, 100, 10.0, _W)), Case((100, 0, 10.0, _W)), Case((80, 90, _K, _W)),
@@ -207,7 +214,7 @@ Exercise(
 
 # ------------------------------------------------------------------ a design: the update rule
 
-def choose_update(update_mm, radius_mm, tolerance_mm):
+def choose_update(update_mm: float, radius_mm: float, tolerance_mm: float) -> int:
     """The cheapest rule (1 Euler, 2 midpoint, 3 exact arc) whose end-point error after half a
     circle of ``radius_mm``, in updates of ``update_mm``, stays within ``tolerance_mm``.
 
@@ -278,7 +285,7 @@ import numpy as np  # noqa: E402
 __all__ += ["blind_distance", "covariance_step", "pose_jacobian", "umbmark_correction"]
 
 
-def pose_jacobian(theta, distance, dtheta):
+def pose_jacobian(theta: float, distance: float, dtheta: float) -> NDArray[np.float64]:
     """F_p = d(x', y', θ')/d(x, y, θ) of one exact arc step (Δs = distance, Δθ = dtheta)."""
     return odo.step_jacobians([0.0, 0.0, theta], distance - dtheta / 2,
                               distance + dtheta / 2, 1.0).wrt_pose
@@ -328,7 +335,8 @@ Exercise(
 )
 
 
-def covariance_step(covariance, theta, distance, track_width, k_left, k_right):
+def covariance_step(covariance: ArrayLike, theta: float, distance: float, track_width: float,
+                    k_left: float, k_right: float) -> NDArray[np.float64]:
     """Σ' after one straight step (both wheels roll `distance`, m) at heading `theta`."""
     return odo.propagate_covariance([0.0, 0.0, theta], covariance, distance, distance,
                                     track_width, k_left, k_right).covariance
@@ -392,7 +400,8 @@ Exercise(
 )
 
 
-def umbmark_correction(cw_end, ccw_end, side, track_width):
+def umbmark_correction(cw_end: ArrayLike, ccw_end: ArrayLike, side: float,
+                       track_width: float) -> tuple[float, ...]:
     """(E_d, E_b) from the mean return errors (x, y), m, of the CW and CCW squares, with
     α and β from the x errors (the paper's equations)."""
     return tuple(odo.umbmark_correction(cw_end, ccw_end, side, track_width, components="x"))
@@ -451,7 +460,7 @@ Exercise(
 )
 
 
-def blind_distance(tolerance, track_width, k_left, k_right):
+def blind_distance(tolerance: float, track_width: float, k_left: float, k_right: float) -> float:
     """The longest straight run (m) whose sideways standard deviation stays <= tolerance."""
     return (3.0 * track_width**2 * tolerance**2 / (k_left + k_right)) ** (1.0 / 3.0)
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from wheelkin.exercises import Case, Exercise
 from wheelkin.rover import (
@@ -47,7 +48,7 @@ _G = OSR_GEOMETRY
 
 # ------------------------------------------------------------------ 1. outer back wheel
 
-def outer_back_speed(radius, speed):
+def outer_back_speed(radius: float, speed: float) -> float:
     """Speed of the OSR's outer back wheel (LB in a right turn, RB in a left turn) when the
     outer middle wheel gets ``speed``; ``radius`` in inches, > 0 turns right."""
     return float(wheel_speeds(radius, speed)[2 if radius > 0 else 5])
@@ -93,7 +94,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 2. corner angles, d2 != d3
 
-def corner_angles_general(R, d1, d2, d3):
+def corner_angles_general(R: float, d1: float, d2: float, d3: float) -> NDArray[np.float64]:
     """The four corner angles delta (rad), corners LF, RF, LB, RB, positive = turned to the
     LEFT (the book's sign), for a rover whose back corners are d2 behind and front corners d3
     ahead of the middle axle, d1 to each side; ``R`` the signed turning radius of the body
@@ -147,7 +148,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 3. tightest turn
 
-def tightest_turn(d1, d2, d3, max_corner_angle_deg):
+def tightest_turn(d1: float, d2: float, d3: float, max_corner_angle_deg: float) -> float:
     """The smallest turning radius (in) of the body centre that keeps every corner within
     ``max_corner_angle_deg`` degrees of straight."""
     return min_turning_radius(RoverGeometry(d1, d2, d3, d1), math.radians(max_corner_angle_deg))
@@ -190,7 +191,8 @@ Exercise(
 
 # ------------------------------------------------------------------ 4. the fastest wheel
 
-def normalised_wheel_speeds(radius, speed, d1, d2, d3, d4):
+def normalised_wheel_speeds(radius: float, speed: float, d1: float, d2: float, d3: float,
+                            d4: float) -> NDArray[np.float64]:
     """The six wheel speeds (wheels LF, LM, LB, RF, RM, RB) scaled so that the fastest wheel
     gets exactly ``speed`` (no motor is asked for more than the command)."""
     v = wheel_speeds(radius, 1.0, RoverGeometry(d1, d2, d3, d4))
@@ -222,7 +224,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 5. design: a longer rover
 
-def longest_corner_offset(d1, d4, max_corner_angle_deg):
+def longest_corner_offset(d1: float, d4: float, max_corner_angle_deg: float) -> float:
     """The largest corner offset d = d2 = d3 (in) for which the document's rule (the outer
     middle wheel gets the command) never asks a corner motor for more than the command in any
     turn the hard stops allow: r*(d) <= r_min(d), with r*(d) = (d^2 + d1^2 - d4^2) /

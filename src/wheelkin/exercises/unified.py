@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 
 from wheelkin.exercises import Case, Exercise
 from wheelkin.mecanum import MecanumGeometry
@@ -38,7 +39,7 @@ __all__ = ["CANDIDATES", "choose_design", "omni_rates", "skid_steer_slip", "tric
 
 # --- 1. the two rows of one wheel ----------------------------------------------------------------
 
-def wheel_rows(x, y, psi):
+def wheel_rows(x: float, y: float, psi: float) -> NDArray[np.float64]:
     """Rolling row and no-side-slip row (a 2x3 array) of a conventional wheel at (x, y) m
     rolling along the direction psi (rad) from the body x axis."""
     w = WheelConstraint("W", (x, y), psi, 1.0, "fixed")
@@ -104,7 +105,7 @@ def _tricycle(front_kind: str):
             WheelConstraint("F", (0.5, 0.0), kind=front_kind, **front[front_kind]))
 
 
-def tricycle_mobility(front_kind):
+def tricycle_mobility(front_kind: str) -> NDArray[np.float64]:
     """(degree of mobility, steerability, manoeuvrability) of a tricycle: a fixed rear axle
     (two fixed wheels) and one front wheel of the kind ``front_kind``."""
     m = mobility(_tricycle(front_kind))
@@ -155,7 +156,8 @@ Exercise(
 
 # --- 3. the wheel rates of an omni-wheel robot ----------------------------------------------------
 
-OMNI_NAMES = ("W1", "W2", "W3")
+#: How the check names the three wheels in its messages.
+OMNI_NAMES = ("the wheel at 0°", "the wheel at 120°", "the wheel at 240°")
 
 
 def _omni(wheel_radius, centre_distance):
@@ -165,9 +167,10 @@ def _omni(wheel_radius, centre_distance):
         for name, a in zip(OMNI_NAMES, (0.0, 2 * math.pi / 3, 4 * math.pi / 3), strict=True))
 
 
-def omni_rates(vx, vy, omega, wheel_radius, centre_distance):
-    """Wheel rates (rad/s) W1, W2, W3 of three omni wheels at 0, 120 and 240 degrees around
-    the centre, rolling counter-clockwise around it (rollers along the rim)."""
+def omni_rates(vx: float, vy: float, omega: float, wheel_radius: float,
+               centre_distance: float) -> np.ndarray:
+    """Wheel rates (rad/s) of three omni wheels at 0, 120 and 240 degrees around the centre,
+    in that order, each rolling counter-clockwise around it (rollers along the rim)."""
     return wheel_rates(_omni(wheel_radius, centre_distance), (vx, vy, omega))
 
 
@@ -188,9 +191,8 @@ def _omni_rim(vx, vy, omega, wheel_radius, centre_distance):
 Exercise(
     "unified.omni_rates",
     "Three omni wheels (rollers along the rim) sit at distance `centre_distance` m from the "
-    "centre, at 0, 120 and 240 degrees from the body x axis (W1 straight ahead), each rolling "
-    "counter-clockwise around the centre. Return their rates W1, W2, W3 (rad/s) for the twist "
-    "(vx, vy, omega).",
+    "centre, at 0, 120 and 240 degrees from the body x axis, each rolling counter-clockwise "
+    "around the centre. Return their rates (rad/s) in that order for the twist (vx, vy, omega).",
     omni_rates,
     [Case((0.0, 0.0, 1.0, 0.03, 0.2)), Case((0.5, 0.0, 0.0, 0.03, 0.2)),
      Case((0.0, 0.4, 0.0, 0.05, 0.15)), Case((0.3, -0.2, 0.8, 0.04, 0.25))],
@@ -201,7 +203,7 @@ Exercise(
          "tangent, at 90 degrees to it (psi_i = alpha_i + 90 degrees)."),
         (_omni_no_distance,
          "the spin term needs the lever arm: the rim moves at omega times the distance to the "
-         "centre (L omega), not at omega."),
+         "centre (centre_distance * omega), not at omega."),
         (_omni_rim, "these are rim speeds (m/s): divide by the wheel radius to get rad/s."),
     ],
 )
@@ -212,7 +214,7 @@ Exercise(
 SKID_NAMES = ("FL", "FR", "RL", "RR")
 
 
-def skid_steer_slip(v, omega, half_track, half_wheelbase):
+def skid_steer_slip(v: float, omega: float, half_track: float, half_wheelbase: float) -> np.ndarray:
     """Sideways sliding speed (m/s, along each wheel's left) of a skid steer's wheels FL, FR,
     RL, RR driving the twist (v, 0, omega)."""
     return slip_residual(skid_steer_wheels(half_track, half_wheelbase, 0.05), (v, 0.0, omega))
@@ -286,52 +288,65 @@ def _degrees(index):
     return m.degree_of_mobility, m.degree_of_steerability
 
 
-def choose_design(delta_m, delta_s):
-    """Index into :data:`CANDIDATES` of the design with mobility ``delta_m`` and
-    steerability ``delta_s`` that needs the fewest motors; -1 if none has them.
+def _fits(index: int, delta_m: int, delta_s: int) -> bool:
+    """Does design ``index`` do at least what (delta_m, delta_s) asks?"""
+    m, s_ = _degrees(index)
+    return m >= delta_m and m + s_ >= delta_m + delta_s
+
+
+def choose_design(delta_m: int, delta_s: int) -> int:
+    """Index into :data:`CANDIDATES` of the design with the fewest motors (on a tie, the first
+    listed) that does at least what the degrees ask: its own degree of mobility at least
+    ``delta_m`` (the motions it makes without steering first) and its degree of
+    manoeuvrability at least ``delta_m + delta_s`` (the twist directions it reaches at all,
+    steering first if it must); -1 if none does.
 
     The degrees are computed by :func:`wheelkin.unified.mobility` from each design's wheels:
 
     >>> [_degrees(k) for k in range(len(CANDIDATES))]
     [(2, 0), (1, 0), (3, 0), (3, 0), (1, 1), (1, 1), (1, 2)]
+    >>> choose_design(1, 2), choose_design(1, 1), choose_design(3, 1)
+    (3, 0, -1)
     """
+    fits = [k for k in range(len(CANDIDATES)) if _fits(k, delta_m, delta_s)]
+    return min(fits, key=lambda k: CANDIDATES[k][2]) if fits else -1
+
+
+def _exact_degrees(delta_m, delta_s):
     fits = [k for k in range(len(CANDIDATES)) if _degrees(k) == (delta_m, delta_s)]
     return min(fits, key=lambda k: CANDIDATES[k][2]) if fits else -1
 
 
 def _first_fit(delta_m, delta_s):
-    fits = [k for k in range(len(CANDIDATES)) if _degrees(k) == (delta_m, delta_s)]
+    fits = [k for k in range(len(CANDIDATES)) if _fits(k, delta_m, delta_s)]
     return fits[0] if fits else -1
 
 
 def _most_motors(delta_m, delta_s):
-    fits = [k for k in range(len(CANDIDATES)) if _degrees(k) == (delta_m, delta_s)]
+    fits = [k for k in range(len(CANDIDATES)) if _fits(k, delta_m, delta_s)]
     return max(fits, key=lambda k: CANDIDATES[k][2]) if fits else -1
-
-
-def _same_manoeuvrability(delta_m, delta_s):
-    fits = [k for k in range(len(CANDIDATES)) if sum(_degrees(k)) == delta_m + delta_s]
-    return min(fits, key=lambda k: CANDIDATES[k][2]) if fits else -1
 
 
 Exercise(
     "unified.choose_design",
-    "Return the index in `CANDIDATES` of the design whose wheels give the degree of mobility "
-    "`delta_m` and the degree of steerability `delta_s` with the fewest motors, or -1 if no "
-    "candidate gives them.",
+    "Return the index in CANDIDATES of the design with the fewest motors (on a tie, the first "
+    "listed) whose degree of mobility is at least delta_m and whose degree of "
+    "manoeuvrability is at least delta_m + delta_s, or -1 if no candidate has them.",
     choose_design,
-    [Case((1, 1)), Case((3, 0)), Case((2, 0)), Case((1, 2)), Case((2, 1))],
+    [Case((1, 1)), Case((3, 0)), Case((2, 0)), Case((1, 2)), Case((2, 1)), Case((3, 1))],
     mistakes=[
+        (_exact_degrees,
+         "that design has exactly the degrees asked, but a design that can do more may cost "
+         "less: accept every design with at least delta_m motions of its own and at least "
+         "delta_m + delta_s directions in all (a differential drive, (2, 0), does what a "
+         "tricycle, (1, 1), does, with the same two motors; the omni base, (3, 0), does what "
+         "a swerve base, (1, 2), does, with three motors instead of six)."),
         (_first_fit,
-         "that design has the right degrees, but another has them with fewer motors: the "
+         "that design can do the task, but another can do it with fewer motors: the "
          "three-omni base is omnidirectional with 3 motors, the mecanum vehicle needs 4."),
         (_most_motors,
-         "that design has the right degrees, but it is the most expensive one: compare the "
-         "motor counts and take the fewest (the rover needs ten motors for what a tricycle "
-         "does with two)."),
-        (_same_manoeuvrability,
-         "that design has the right degree of manoeuvrability δM = δm + δs but the wrong "
-         "split: a differential drive (2, 0) turns without steering, a tricycle (1, 1) must "
-         "steer first. Compute δm and δs separately."),
+         "that design can do the task, but it is the most expensive one: compare the motor "
+         "counts and take the fewest (the rover needs ten motors for what a tricycle does "
+         "with two)."),
     ],
 )

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin.diffdrive import body_twist
 from wheelkin.exercises import Case, Exercise
@@ -35,7 +36,8 @@ def _arc_command(radius, half_axle, wheel_radius, wheel_rate):
 
 # ------------------------------------------------------------------ 1. duration of a curve
 
-def quarter_circle_duration(radius, half_axle, wheel_radius, wheel_rate):
+def quarter_circle_duration(radius: float, half_axle: float, wheel_radius: float,
+                            wheel_rate: float) -> float:
     """Seconds for a quarter circle of radius ``radius`` (m, the centre's path) when the outer
     wheel turns at ``wheel_rate`` (rad/s); ``half_axle`` and ``wheel_radius`` in m."""
     return _arc_command(radius, half_axle, wheel_radius, wheel_rate).duration
@@ -67,7 +69,8 @@ Exercise(
 
 # ------------------------------------------------------------------ 2. wheel rates on a curve
 
-def curve_wheel_rates(radius, half_axle, wheel_radius, wheel_rate):
+def curve_wheel_rates(radius: float, half_axle: float, wheel_radius: float,
+                      wheel_rate: float) -> tuple[float, float]:
     """Left and right wheel rates (rad/s) for a curve of signed ``radius`` (m, > 0 turns left),
     the outer wheel at ``wheel_rate`` (rad/s); returned as (left, right)."""
     c = _arc_command(radius, half_axle, wheel_radius, wheel_rate)
@@ -109,7 +112,7 @@ Exercise(
 
 # ------------------------------------------------------------------ 3. heading from encoders
 
-def heading_after(wheel_angles, wheel_radius, half_axle):
+def heading_after(wheel_angles: ArrayLike, wheel_radius: float, half_axle: float) -> float:
     """Heading change (rad, counter-clockwise +) after the wheels turned by ``wheel_angles``
     (rad, cumulative from zero, order FL, FR, RL, RR) on an ideal skid steer (no slip)."""
     fl, fr, rl, rr = (float(a) for a in wheel_angles)
@@ -152,7 +155,8 @@ Exercise(
 
 # ------------------------------------------------------------------ 4. effective track width
 
-def effective_track_width(left_angle, right_angle, rotation, wheel_radius):
+def effective_track_width(left_angle: float, right_angle: float, rotation: float,
+                          wheel_radius: float) -> float:
     """Effective track width (m) from a spin test: the sides turned by ``left_angle`` and
     ``right_angle`` (rad, side averages) while the robot turned by ``rotation`` (rad,
     measured)."""
@@ -180,7 +184,8 @@ Exercise(
 
 # ------------------------------------------------------------------ 5. a design: skid-steer curve
 
-def skid_curve_rates(radius, half_axle, half_wheelbase, wheel_radius, wheel_rate):
+def skid_curve_rates(radius: float, half_axle: float, half_wheelbase: float, wheel_radius: float,
+                     wheel_rate: float) -> tuple[float, float]:
     """(left, right) wheel rates (rad/s) that make a four-wheeled skid steer (wheels at
     x = ±``half_wheelbase``, y = ±``half_axle``, m) follow a curve of signed ``radius`` (m, > 0
     turns left) with the outer wheels at ``wheel_rate``: the two-wheel rates computed with the

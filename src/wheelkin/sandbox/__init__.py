@@ -16,6 +16,12 @@ exact SE(2) stepping, walls), :mod:`.sensors` (encoders), :mod:`.render` (drawin
 animations). Everything is SI and REP-103 (x forward, y left, heading counter-clockwise).
 """
 
+try:
+    import pymunk  # noqa: F401
+except ModuleNotFoundError as exc:  # the formula modules work without it; the sandbox does not
+    raise ModuleNotFoundError("wheelkin.sandbox needs pymunk: install the extra, "
+                              "pip install \".[sandbox]\" from a checkout") from exc
+
 from .car import RC_CAR, PurePursuitDriver, Steering, car, car_odometry, drive, front_angles
 from .vehicles import (
     LAB_ROBOT,
@@ -23,7 +29,6 @@ from .vehicles import (
     OPEN_SOURCE_ROVER,
     RADON_ULZER,
     VehicleSpec,
-    Wheel,
     diff_drive,
     ideal_commands,
     mecanum,
@@ -43,7 +48,6 @@ __all__ = [
     "Steering",
     "Trajectory",
     "VehicleSpec",
-    "Wheel",
     "World",
     "car",
     "car_odometry",

@@ -1,7 +1,8 @@
 r"""A car-like vehicle in the sandbox: free-rolling steered front wheels, driven rear wheels.
 
-The car's wheels are FL, FR (kind ``"free"``: steered, rolling freely, so each constrains only
-its lateral velocity) and RL, RR (fixed, driven). The reference point is the rear-axle
+The car's wheels are those of :func:`wheelkin.unified.car_wheels`: FL, FR (steered and rolling
+freely, the spec's ``free_rolling``, so each constrains only its sliding velocity) and RL, RR
+(fixed, driven). The reference point is the rear-axle
 midpoint, as in the bicycle model of :mod:`wheelkin.carlike` (it is also the rigid body's mass
 centre in the simulation; the normal loads are set per wheel, half on each axle by default).
 
@@ -38,12 +39,14 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from wheelkin import _validate as V
-from wheelkin import carlike
+from wheelkin import carlike, unified
 from wheelkin._kernels import arc_step
 
-from .vehicles import VehicleSpec, Wheel, _finish, _rectangle
+from .vehicles import VehicleSpec, _finish, _rectangle
+from .world import Robot, World
 
 __all__ = [
     "GEOMETRIES",
@@ -67,9 +70,9 @@ def car(
     mass: float = 3.5,
     inertia: float | None = None,
     front_load: float = 0.5,
-    body=None,
+    body: npt.ArrayLike | None = None,
     name: str = "car",
-    **kwargs,
+    **kwargs: object,
 ) -> VehicleSpec:
     """A four-wheel car: free-rolling steered fronts FL, FR; fixed driven rears RL, RR.
 
@@ -108,14 +111,11 @@ def car(
         raise ValueError(f"front_load must be in (0, 1), got {front_load!r}")
     if body is None:
         body = _rectangle(-r, L + r, -0.4 * W, 0.4 * W)
-    wheels = [
-        Wheel("FL", (L, W / 2), 0.0, r, "free", load_fraction=f / 2),
-        Wheel("FR", (L, -W / 2), 0.0, r, "free", load_fraction=f / 2),
-        Wheel("RL", (0.0, W / 2), 0.0, r, "fixed", load_fraction=(1 - f) / 2),
-        Wheel("RR", (0.0, -W / 2), 0.0, r, "fixed", load_fraction=(1 - f) / 2),
-    ]
+    wheels = unified.car_wheels(L, W, r)
     kwargs.setdefault("steered_names", ("FL", "FR"))
-    return _finish(name, mass, inertia, body, wheels, **kwargs)
+    kwargs.setdefault("free_rolling", ("FL", "FR"))
+    loads = (f / 2, f / 2, (1 - f) / 2, (1 - f) / 2)
+    return _finish(name, mass, inertia, body, wheels, loads, **kwargs)
 
 
 #: A 1/10-scale car-like robot (F1TENTH class): L = 0.33 m, W = 0.27 m, r = 0.05 m, 3.5 kg;
@@ -125,11 +125,17 @@ RC_CAR = car(0.33, 0.27, 0.05, mass=3.5, name="1/10 car")
 RC_CAR_MAX_STEERING = 0.4189
 
 
+def _car_robot(robot: object) -> Robot:
+    if not isinstance(robot, Robot):
+        raise ValueError(f"robot must be a sandbox Robot (World.add), got {type(robot).__name__}")
+    return robot
+
+
 @functools.lru_cache(maxsize=64)
 def _car_geometry(spec: VehicleSpec) -> tuple[float, float, float]:
     """(L, W, r) of a :func:`car` spec; ValueError for another vehicle."""
     names = {w.name: w for w in spec.wheels}
-    if set(spec.wheel_names) != {"FL", "FR", "RL", "RR"} or names["FL"].kind != "free":
+    if set(spec.wheel_names) != {"FL", "FR", "RL", "RR"} or "FL" not in spec.free_rolling:
         raise ValueError(f"spec must be a car (see wheelkin.sandbox.car.car), got {spec.name!r}")
     L = names["FL"].position[0] - names["RL"].position[0]
     W = names["RL"].position[1] - names["RR"].position[1]
@@ -189,7 +195,8 @@ def front_angles(steering: Steering, delta: float, wheelbase: float, track_width
     d = V.finite("delta", delta)
     if abs(d) >= math.pi / 2:
         raise ValueError(f"delta must be in (-pi/2, pi/2) rad, got {delta!r}")
-    L, W = wheelbase, track_width
+    L = V.in_range("wheelbase", wheelbase, 1e-3, 1e3)
+    W = V.in_range("track_width", track_width, 1e-3, 1e3)
     if steering.geometry == "parallel" or d == 0.0:
         return d, d
     t = math.tan(d)
@@ -205,14 +212,14 @@ def front_angles(steering: Steering, delta: float, wheelbase: float, track_width
     return float(lk.left), float(lk.right)
 
 
-def drive(robot, speed: float, delta: float, steering: Steering | None = None) -> None:
+def drive(robot: Robot, speed: float, delta: float, steering: Steering | None = None) -> None:
     """Command a car robot: rear-axle speed ``speed`` (m/s), steering ``delta`` (rad).
 
     The front wheels are steered by ``steering`` (default ideal Ackermann); the rear wheels
     turn at the bicycle twist's rates; the free front wheels' rates are their kinematic ones.
     Called every step by controllers, so it checks its arguments with plain floats.
     """
-    L, W, r = _car_geometry(robot.spec)
+    L, W, r = _car_geometry(_car_robot(robot).spec)
     try:
         ok = not isinstance(speed, bool) and not isinstance(delta, bool)
         v, d = float(speed), float(delta)
@@ -238,8 +245,8 @@ def drive(robot, speed: float, delta: float, steering: Steering | None = None) -
         warm.consistent_key, warm.consistent_rates, warm.consistent = robot._model, rates, True
 
 
-def car_odometry(rear_angles, steering, wheelbase: float, wheel_radius: float,
-                 pose0=(0.0, 0.0, 0.0)) -> np.ndarray:
+def car_odometry(rear_angles: npt.ArrayLike, steering: npt.ArrayLike, wheelbase: float,
+                 wheel_radius: float, pose0: npt.ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
     r"""Dead reckoning of a car from its rear wheel angles and its steering command.
 
     Per interval k: the rear-axle midpoint travels
@@ -280,8 +287,8 @@ def car_odometry(rear_angles, steering, wheelbase: float, wheel_radius: float,
         raise ValueError(f"steering must have {n} or {n + 1} values, got {len(d)}")
     if np.any(np.abs(d) >= math.pi / 2):
         raise ValueError("steering must be in (-pi/2, pi/2) rad")
-    L = V.positive("wheelbase", wheelbase)
-    r = V.positive("wheel_radius", wheel_radius)
+    L = V.in_range("wheelbase", wheelbase, 1e-3, 1e3)
+    r = V.in_range("wheel_radius", wheel_radius, 1e-4, 1e2)
     p0 = V.shaped("pose0", pose0, (3,)).reshape(3)
     ds = r * np.diff(phi, axis=0).mean(axis=1)
     dth = ds * np.tan(d) / L
@@ -295,7 +302,8 @@ def car_odometry(rear_angles, steering, wheelbase: float, wheel_radius: float,
 
 
 class PurePursuitDriver:
-    r"""A pure-pursuit controller for :meth:`World.run`: steer towards a look-ahead point.
+    r"""A pure-pursuit controller for :meth:`wheelkin.sandbox.world.World.run`: steer towards
+    a look-ahead point.
 
     Each call finds the path point closest to the rear-axle midpoint (searching forward from
     the last one), walks ``lookahead`` metres along the path, expresses that point in the car's
@@ -324,9 +332,9 @@ class PurePursuitDriver:
         The steering command of each call (rad).
     """
 
-    def __init__(self, robot, path, speed: float, lookahead: float, max_steering: float,
-                 steering: Steering | None = None) -> None:
-        self.robot = robot
+    def __init__(self, robot: Robot, path: npt.ArrayLike, speed: float, lookahead: float,
+                 max_steering: float, steering: Steering | None = None) -> None:
+        self.robot = _car_robot(robot)
         self.L, self.W, self.r = _car_geometry(robot.spec)
         p = V.shaped("path", path, (2,))
         if p.ndim != 2 or len(p) < 2:
@@ -339,12 +347,14 @@ class PurePursuitDriver:
         self.max_steering = V.finite("max_steering", max_steering)
         if not 0 < self.max_steering < math.pi / 2:
             raise ValueError(f"max_steering must be in (0, pi/2), got {max_steering!r}")
+        if steering is not None and not isinstance(steering, Steering):
+            raise ValueError(f"steering must be a Steering or None, got {steering!r}")
         self.steering = Steering() if steering is None else steering
         self.index = 0
         self.log: list[float] = []
         self.done = False
 
-    def __call__(self, t: float, world) -> None:
+    def __call__(self, t: float, world: World) -> None:
         x, y, th = self.robot.pose
         p = self.path
         hi = min(len(p), self.index + 400)

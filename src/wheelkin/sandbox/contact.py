@@ -3,14 +3,15 @@ r"""Wheel-ground contact: friction-limited impulses that make the body roll on i
 The model, in plain words
 -------------------------
 Each step, every driven wheel asks the ground for a velocity at its contact point: along its
-rolling direction ``e``, the wheel's surface speed r_w * phi; across it (``n``), zero. A mecanum
-wheel asks only along the axis ``u`` of its ground roller, for r_w * phi * (u . e); the roller
-spins freely in the other direction. The ground answers with an *impulse* at the contact point
-(a force times the step dt) that changes the body's velocity towards what the wheels ask, and
-friction caps it: a conventional wheel's impulse lies in a disc of radius mu * N_i * dt (the
-Coulomb friction circle, N_i the wheel's normal load), a mecanum wheel's in the interval of that
-half-width. Where every wheel gets what it asks within its cap, the vehicle moves exactly as its
-kinematic model says; where one cannot, it *slips*, and it is flagged.
+rolling direction ``e``, the wheel's surface speed r_w * phi; across it (``n``), zero. A
+Swedish (mecanum or omni) wheel asks only along the axis ``u`` of its ground roller, for
+r_w * phi * (u . e); the roller spins freely in the other direction. The ground answers with
+an *impulse* at the contact point (a force times the step dt) that changes the body's velocity
+towards what the wheels ask, and friction caps it: a conventional wheel's impulse lies in a
+disc of radius mu * N_i * dt (the Coulomb friction circle, N_i the wheel's normal load), a
+Swedish wheel's in the interval of that half-width. Where every wheel gets what it asks within
+its cap, the vehicle moves exactly as its kinematic model says; where one cannot, it *slips*,
+and it is flagged.
 
 The maths
 ---------
@@ -34,7 +35,7 @@ charged to the tyres). The impulses lambda (one per row) give xi' = xi_p + M^-1 
    orthonormal), so a steering change costs only P: a few dozen float operations per step.
 2. *Slip*: otherwise xi' minimises the convex function
 
-   F(xi) = 1/2 (xi - xi_p)^T M (xi - xi_p) + sum_w mu N_w dt * |J_w xi - b_w|
+   F(xi) = 1/2 (xi - xi_p)^T M (xi - xi_p) + sum_w mu N_w dt * norm(J_w xi - b_w)
 
    (kinetic energy of the correction plus the work friction does on the slip: the principle of
    maximum dissipation), whose optimality conditions are exactly the Coulomb law: a sticking
@@ -62,13 +63,21 @@ turns at its commanded rate (after the optional first-order motor lag) whatever 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+import numpy.typing as npt
 
-from .vehicles import GRAVITY, VehicleSpec
+from wheelkin import _validate as V
+from wheelkin import unified
+from wheelkin._kernels import point_row, roller_axis
 
-__all__ = ["ContactModel", "ContactResult", "constraint_rows", "dissipation_objective"]
+from .vehicles import VehicleSpec
+
+# ContactModel and ContactResult are the world's engine (World.step calls them with values it
+# has checked, every step); the public functions are the rows and the objective.
+__all__ = ["constraint_rows", "dissipation_objective"]
 
 #: A constraint whose contact velocity misses its request by more than this slips (m/s).
 SLIP_TOLERANCE = 1e-9
@@ -76,13 +85,16 @@ SLIP_TOLERANCE = 1e-9
 CAP_TOLERANCE = 1e-9
 
 
-def constraint_rows(spec: VehicleSpec, steering=()) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def constraint_rows(spec: VehicleSpec, steering: Sequence[float] = ()
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Constraint Jacobian J, rate map B and the driven wheel of each row.
 
-    Rows are grouped by driven wheel in ``spec.wheel_names`` order: (rolling, lateral) for a
-    conventional wheel, (roller axis) for a mecanum wheel. Row i acts on the body twist
-    (vx, vy, w) as J_i = (d_x, d_y, p_x d_y - p_y d_x), d the row's direction and p the wheel's
-    contact point; the requested contact velocity is b = B @ phi.
+    The rows are those of :mod:`wheelkin.unified` for ``spec.wheels_at(steering)``, grouped by
+    wheel in ``spec.wheel_names`` order: (:func:`~wheelkin.unified.rolling_row`,
+    :func:`~wheelkin.unified.sliding_row`) for a conventional wheel (an empty rolling row for
+    a free-rolling one), (:func:`~wheelkin.unified.roller_row`) for a Swedish wheel. Each is
+    J_i = (d_x, d_y, p_x d_y - p_y d_x), d the row's unit direction and p the wheel's contact
+    point; the requested contact velocity is b = B @ phi.
 
     Parameters
     ----------
@@ -99,47 +111,70 @@ def constraint_rows(spec: VehicleSpec, steering=()) -> tuple[np.ndarray, np.ndar
     >>> B.round(3).tolist(), wheel.tolist()
     ([[0.02, 0.0], [0.0, 0.0], [0.0, 0.02], [0.0, 0.0]], [0, 0, 1, 1])
     """
-    steer = list(steering)
-    if len(steer) != len(spec.steered_names):
-        raise ValueError(
-            f"steering must have {len(spec.steered_names)} angles "
-            f"({', '.join(spec.steered_names) or 'none'}), got {len(steer)}"
-        )
-    driven = spec.driven_wheels
-    per_wheel = spec.steering_of(steer)
+    if not isinstance(spec, VehicleSpec):
+        raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
+    k = len(spec.steered_names)
+    steer = V.shaped("steering", steering, (k,)) if k else V.finite_array("steering", steering)
+    if steer.shape != (k,):
+        raise ValueError(f"steering must have {k} angles "
+                         f"({', '.join(spec.steered_names) or 'none'}), got shape {steer.shape}")
+    if np.any(np.abs(steer) > math.pi):
+        raise ValueError(f"steering must be in [-pi, pi] rad, got {steering!r}")
+    steer = steer.tolist()
+    n = len(spec.wheel_names)
     J, B, owner = [], [], []
-    for j, wheel in enumerate(driven):
-        h = wheel.heading + per_wheel[j]
-        e = (math.cos(h), math.sin(h))
-        n = (-e[1], e[0])
-        px, py = wheel.position
-        if wheel.kind == "mecanum":
-            a = h + math.pi / 2 + wheel.roller_angle
-            u = (math.cos(a), math.sin(a))
-            rows = [(u, wheel.radius * (u[0] * e[0] + u[1] * e[1]))]
-        elif wheel.kind == "free":  # rolls freely: an empty rolling row, the lateral row
-            rows = [((0.0, 0.0), 0.0), (n, 0.0)]
+    for j, wheel in enumerate(spec.wheels_at(steer)):
+        if wheel.kind == "swedish":
+            rows = [(unified.roller_row(wheel),
+                     wheel.radius * float(wheel.roller_axis @ wheel.rolling_direction))]
+        elif wheel.name in spec.free_rolling:  # rolls freely: an empty rolling row, sliding
+            rows = [(np.zeros(3), 0.0), (unified.sliding_row(wheel), 0.0)]
         else:
-            rows = [(e, wheel.radius), (n, 0.0)]
-        for d, coeff in rows:
-            J.append((d[0], d[1], px * d[1] - py * d[0]))
-            brow = [0.0] * len(driven)
+            rows = [(unified.rolling_row(wheel), wheel.radius),
+                    (unified.sliding_row(wheel), 0.0)]
+        for row, coeff in rows:
+            J.append(row)
+            brow = [0.0] * n
             brow[j] = coeff
             B.append(brow)
             owner.append(j)
     return np.array(J), np.array(B), np.array(owner)
 
 
-def dissipation_objective(xi, xi_pred, J, b, mass_diag, caps, rows_per_wheel) -> float:
-    """F(xi) = 1/2 (xi - xi_p)^T M (xi - xi_p) + sum_w c_w |J_w xi - b_w| (see module doc).
+def dissipation_objective(xi: npt.ArrayLike, xi_pred: npt.ArrayLike, J: npt.ArrayLike,
+                          b: npt.ArrayLike, mass_diag: npt.ArrayLike, caps: npt.ArrayLike,
+                          rows_per_wheel: int) -> float:
+    """F(xi) = 1/2 (xi - xi_p)^T M (xi - xi_p) + sum_w c_w norm(J_w xi - b_w) (see module doc).
 
     The contact solution minimises it; tests use it to check optimality independently of the
     solver. ``caps`` are per wheel (mu N_w dt), ``rows_per_wheel`` is 1 or 2.
     """
-    xi = np.asarray(xi, float)
-    dx = xi - np.asarray(xi_pred, float)
-    s = (J @ xi - b).reshape(-1, rows_per_wheel)
-    return float(0.5 * dx @ (np.asarray(mass_diag) * dx) + caps @ np.sqrt((s * s).sum(1)))
+    if isinstance(rows_per_wheel, bool) or rows_per_wheel not in (1, 2):
+        raise ValueError(f"rows_per_wheel must be 1 or 2, got {rows_per_wheel!r}")
+    x = V.shaped("xi", xi, (3,))
+    xp = V.shaped("xi_pred", xi_pred, (3,))
+    jac = V.shaped("J", J, (3,))
+    if x.shape != (3,) or xp.shape != (3,):
+        raise ValueError(f"xi and xi_pred must have shape (3,), got {x.shape} and {xp.shape}")
+    if jac.ndim != 2 or len(jac) == 0 or len(jac) % rows_per_wheel:
+        raise ValueError(f"J must have shape (m, 3) with m a multiple of rows_per_wheel "
+                         f"({rows_per_wheel}), got shape {jac.shape}")
+    m = len(jac)
+    rhs = V.finite_array("b", b)
+    if rhs.shape != (m,):
+        raise ValueError(f"b must have shape ({m},), one per row of J, got shape {rhs.shape}")
+    mass = V.finite_array("mass_diag", mass_diag)
+    if mass.shape != (3,) or np.any(mass <= 0):
+        raise ValueError(f"mass_diag must be 3 positive numbers (m, m, I), got {mass_diag!r}")
+    c = V.finite_array("caps", caps)
+    if c.shape != (m // rows_per_wheel,) or np.any(c < 0):
+        raise ValueError(f"caps must be {m // rows_per_wheel} numbers >= 0, one per wheel, "
+                         f"got {caps!r}")
+    with np.errstate(all="ignore"):
+        dx = x - xp
+        s = (jac @ x - rhs).reshape(-1, rows_per_wheel)
+        value = float(0.5 * dx @ (mass * dx) + c @ np.sqrt((s * s).sum(1)))
+    return float(V.finite_result("xi, xi_pred, J, b, mass_diag and caps", value))
 
 
 @dataclass(slots=True)
@@ -322,7 +357,7 @@ class _Base:
     """What does not depend on the steering: masses, caps, and C = (J^T J)^-1.
 
     For a conventional wheel the rolling and lateral rows are orthonormal in (x, y), so their
-    contribution to J^T J does not depend on the steering angle; a mecanum wheel is not
+    contribution to J^T J does not depend on the steering angle; a Swedish wheel is not
     steered. So C is one constant 3x3 matrix per vehicle.
     """
 
@@ -335,15 +370,14 @@ class _Base:
         self.n = len(spec.wheel_names)
         self.k = len(J) // self.n
         self.mass_diag = np.array([spec.mass, spec.mass, spec.inertia])
-        loads = np.array([w.load_fraction for w in spec.driven_wheels]) * spec.mass * GRAVITY
-        self.caps = spec.mu * loads * dt  # impulse cap per wheel, N s
+        self.caps = spec.mu * spec.normal_loads * dt  # impulse cap per wheel, N s
         self.stick_flags = (False,) * self.n
         self.stick_speeds = (0.0,) * self.n
         where = {name: i for i, name in enumerate(spec.steered_names)}
         self.table = tuple(
-            (w.position[0], w.position[1], w.heading, w.radius, w.kind == "mecanum",
+            (w.position[0], w.position[1], w.heading, w.radius, w.kind == "swedish",
              w.roller_angle, where.get(w.name, -1),
-             (float(cap) * (1.0 + CAP_TOLERANCE)) ** 2, w.kind == "free")
+             (float(cap) * (1.0 + CAP_TOLERANCE)) ** 2, w.name in spec.free_rolling)
             for w, cap in zip(spec.driven_wheels, self.caps, strict=True))
         self.C_flat = tuple(v for row in self.C_list for v in row)
         # Free-rolling wheels have one row each (lateral), so J^T J depends on their steering:
@@ -369,7 +403,7 @@ def _free_gram_inverse(base: _Base, steering: tuple) -> tuple:
         px, py, heading, slot = entry[0], entry[1], entry[2], entry[6]
         ang = heading + (steering[slot] if slot >= 0 else 0.0)
         ch, sh = math.cos(ang), math.sin(ang)
-        r0, r1, r2 = -sh, ch, px * ch + py * sh
+        r0, r1, r2 = point_row(px, py, -sh, ch)
         a += r0 * r0
         b += r0 * r1
         c += r0 * r2
@@ -386,22 +420,56 @@ def _free_gram_inverse(base: _Base, steering: tuple) -> tuple:
 
 def _wheel_data(entry: tuple, steer: float, C: tuple) -> tuple:
     """A driven wheel's column of P = J^+ B and its stick-check data at a steering angle."""
-    px, py, heading, radius, is_mecanum, gamma, _slot, cap2, is_free = entry
+    px, py, heading, radius, is_swedish, gamma, _slot, cap2, is_free = entry
     c0, c1, c2, c3, c4, c5, c6, c7, c8 = C
     h = heading + steer
     ex, ey = math.cos(h), math.sin(h)
     if is_free:  # only the lateral row: no column in P, the impulse along n is checked
         return (0.0, 0.0, 0.0), (px, py, -ey, ex, 0.0, cap2, False)
-    if is_mecanum:
-        a = h + math.pi / 2 + gamma
-        dx, dy = math.cos(a), math.sin(a)
+    if is_swedish:
+        dx, dy = roller_axis(h, gamma)
         coef = radius * (dx * ex + dy * ey)
     else:
         dx, dy, coef = ex, ey, radius
-    r2 = px * dy - py * dx
+    r2 = point_row(px, py, dx, dy)[2]
     col = (coef * (c0 * dx + c1 * dy + c2 * r2), coef * (c3 * dx + c4 * dy + c5 * r2),
            coef * (c6 * dx + c7 * dy + c8 * r2))
-    return col, (px, py, dx, dy, coef, cap2, not is_mecanum)
+    return col, (px, py, dx, dy, coef, cap2, not is_swedish)
+
+
+def _disc_step(Ainv: list, t0: float, t1: float, cap: float) -> tuple[float, float]:
+    """The impulse of a two-row wheel's exact block step when the unconstrained one, ``t``,
+    is outside the friction disc: the minimiser of (l - t)^T A (l - t) over |l| <= cap, with
+    A = Ainv^-1 the block's effective inverse mass.
+
+    Not the plain projection t cap / |t|, which is the minimiser only when A is a multiple of
+    the identity. On the disc's edge the optimum is l(mu) = (A + mu I)^-1 A t with mu > 0 and
+    |l(mu)| = cap; Newton's method on 1/|l(mu)| - 1/cap (Moré and Sorensen's secular
+    equation, concave and increasing in mu) converges to it from mu = 0.
+    """
+    det = Ainv[0][0] * Ainv[1][1] - Ainv[0][1] * Ainv[1][0]
+    scale = Ainv[0][0] * Ainv[0][0] + Ainv[1][1] * Ainv[1][1] + 2 * Ainv[0][1] * Ainv[0][1]
+    if abs(det) <= 1e-12 * scale:  # one row of the pair is empty (a free-rolling wheel):
+        norm = math.hypot(t0, t1)   # t has no component along it, and the plain projection
+        return t0 * cap / norm, t1 * cap / norm  # of t is the exact step
+    a00, a01, a11 = Ainv[1][1] / det, -Ainv[0][1] / det, Ainv[0][0] / det  # A = Ainv^-1
+    c0, c1 = a00 * t0 + a01 * t1, a01 * t0 + a11 * t1  # A t
+    mu = 0.0
+    l0, l1 = t0, t1
+    for _ in range(60):
+        d = (a00 + mu) * (a11 + mu) - a01 * a01
+        l0 = ((a11 + mu) * c0 - a01 * c1) / d
+        l1 = (-a01 * c0 + (a00 + mu) * c1) / d
+        norm = math.hypot(l0, l1)
+        m0 = ((a11 + mu) * l0 - a01 * l1) / d  # (A + mu I)^-1 l
+        m1 = (-a01 * l0 + (a00 + mu) * l1) / d
+        psi = 1.0 / norm - 1.0 / cap
+        step = psi * norm ** 3 / (l0 * m0 + l1 * m1)
+        mu -= step
+        if abs(psi) <= 1e-15 / cap or mu < 0.0:
+            break
+    norm = math.hypot(l0, l1)
+    return l0 * cap / norm, l1 * cap / norm  # on the edge exactly (to rounding)
 
 
 class ContactModel:
@@ -419,7 +487,7 @@ class ContactModel:
 
     The stick path runs in plain floats: with P = J^+ B (3 x n) and C = (J^T J)^-1,
     xi' = P phi, h = C M (xi' - xi_p), and a wheel's impulse is lambda_w = J_w h, whose length
-    for a conventional wheel is |(h_x - p_y h_w, h_y + p_x h_w)| whatever its steering. The
+    for a conventional wheel is norm((h_x - p_y h_w, h_y + p_x h_w)) whatever its steering. The
     numpy matrices of the slip path are built on first use.
     """
 
@@ -496,7 +564,8 @@ class ContactModel:
         return self._WJt
 
     # ---------------------------------------------------------------- fast path
-    def solve(self, rates, xi_pred, warm: _Warm) -> ContactResult:
+    def solve(self, rates: Sequence[float], xi_pred: Sequence[float], warm: _Warm
+              ) -> ContactResult:
         """Impulses for one step: the twist after them and the slip flags.
 
         ``rates`` are the wheel rates over the step (rad/s, a list), ``xi_pred`` the
@@ -695,10 +764,8 @@ class ContactModel:
                     s1 = j1[0] * xi[0] + j1[1] * xi[1] + j1[2] * xi[2] - bl[i1]
                     l0 = lam[i0] - (Ainv[0][0] * s0 + Ainv[0][1] * s1)
                     l1 = lam[i1] - (Ainv[1][0] * s0 + Ainv[1][1] * s1)
-                    norm = math.hypot(l0, l1)
-                    if norm > cap:
-                        l0 *= cap / norm
-                        l1 *= cap / norm
+                    if math.hypot(l0, l1) > cap:
+                        l0, l1 = _disc_step(Ainv, l0, l1, cap)
                     d0, d1 = l0 - lam[i0], l1 - lam[i1]
                     lam[i0], lam[i1] = l0, l1
                     w0, w1 = WJr

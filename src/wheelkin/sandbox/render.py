@@ -9,9 +9,9 @@ animations redraw in place, never rebuilding the figure. A slipping wheel is dra
 :func:`animate` turns one or several :class:`~wheelkin.sandbox.world.Trajectory` s into a
 :class:`~matplotlib.animation.FuncAnimation` (trail, walls, a planned path, extra paths such as
 an odometry estimate, the time); show it in a static page with
-:func:`wheelkin.animation.show`, which gives the player stable element ids and alt text. Keep
+``wheelkin.animation.show``, which gives the player stable element ids and alt text. Keep
 it small: 40 frames at 100 dpi and figsize (6.7, 4.2) make well under 1 MB once
-:func:`~wheelkin.animation.to_html` has stored the frames with a palette. The frames are
+``wheelkin.animation.to_html`` has stored the frames with a palette. The frames are
 blitted (:class:`SandboxAnimation`): the axes are drawn once, then only what moves.
 
 Mecanum rollers are drawn as the rollers *touching the ground* (as if seen through the wheel
@@ -24,23 +24,29 @@ from __future__ import annotations
 
 import base64
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from io import BytesIO
 from pathlib import Path
 from tempfile import TemporaryDirectory
+from typing import Any
 
 import numpy as np
 from matplotlib.animation import FuncAnimation, HTMLWriter
+from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import LineCollection
+from matplotlib.colors import is_color_like
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrow, Polygon
+from numpy.typing import ArrayLike
 
 from wheelkin import _validate as V
+from wheelkin._kernels import roller_axis
+from wheelkin.style import fixed_layout
 
 from .vehicles import VehicleSpec
-from .world import Trajectory
+from .world import MAX_COORDINATE, MAX_SPEED, MAX_YAW_RATE, Trajectory
 
 __all__ = ["PALETTE", "SandboxAnimation", "VehicleDrawing", "animate", "draw_vehicle"]
 
@@ -49,6 +55,36 @@ PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b")
 WHEEL_COLOUR = "#333333"
 SLIP_COLOUR = "#d62728"
 ICR_COLOUR = "#7f7f7f"
+#: Figure sizes (in) and resolutions (dpi) an animation accepts; its frame interval (ms).
+FIGSIZE_RANGE = (1.0, 20.0)
+DPI_RANGE = (10.0, 600.0)
+INTERVAL_RANGE = (1.0, 60_000.0)
+
+
+def _flag(name: str, value) -> bool:
+    """``value`` if it is a bool; a flag is True or False, not a truthy value."""
+    if not isinstance(value, bool | np.bool_):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def _points(name: str, value) -> np.ndarray:
+    """An (N, 2) array of finite points within the sandbox's coordinates, N >= 1."""
+    arr = V.shaped(name, value, (2,))
+    if arr.ndim != 2 or len(arr) < 1:
+        raise ValueError(f"{name} must have shape (N, 2), N >= 1, got shape {arr.shape}")
+    if np.any(np.abs(arr) > MAX_COORDINATE):
+        raise ValueError(f"{name} must be within |x|, |y| <= {MAX_COORDINATE:g} m")
+    return arr
+
+
+def _pose(value) -> tuple[float, float, float]:
+    p = V.shaped("pose", value, (3,))
+    if p.ndim != 1:
+        raise ValueError(f"pose must be one pose (x, y, theta), got shape {p.shape}")
+    if abs(p[0]) > MAX_COORDINATE or abs(p[1]) > MAX_COORDINATE:
+        raise ValueError(f"pose must be within |x|, |y| <= {MAX_COORDINATE:g} m, got {value!r}")
+    return (float(p[0]), float(p[1]), float(p[2]))
 
 
 def _to_world(pose, points: np.ndarray) -> np.ndarray:
@@ -60,7 +96,7 @@ def _to_world(pose, points: np.ndarray) -> np.ndarray:
 
 def _wheel_outline(wheel, angle: float) -> np.ndarray:
     """Body-frame corners of a wheel's top view (length 2 r_w, its tyre width)."""
-    half_l, half_w = wheel.radius, wheel.drawn_width / 2
+    half_l, half_w = wheel.radius, 0.3 * wheel.radius
     c, s = math.cos(angle), math.sin(angle)
     px, py = wheel.position
     local = np.array([(-half_l, -half_w), (half_l, -half_w), (half_l, half_w), (-half_l, half_w)])
@@ -69,13 +105,10 @@ def _wheel_outline(wheel, angle: float) -> np.ndarray:
 
 
 def _rollers(wheel, angle: float, count: int = 4) -> np.ndarray:
-    """Body-frame segments of a mecanum wheel's ground rollers, shape (count, 2, 2)."""
-    # Ground roller axis: the axle direction turned by gamma.
-    axle = angle + math.pi / 2
-    a = axle + wheel.roller_angle
-    ux, uy = math.cos(a), math.sin(a)
+    """Body-frame segments of a Swedish wheel's ground rollers, shape (count, 2, 2)."""
+    ux, uy = roller_axis(angle, wheel.roller_angle)  # the axle turned by gamma
     ex, ey = math.cos(angle), math.sin(angle)
-    half_w = wheel.drawn_width / 2
+    half_w = 0.3 * wheel.radius
     # A roller spans the tyre width: length half_w / |u . n| along u, clipped to the wheel.
     un = abs(math.cos(wheel.roller_angle))
     half = min(half_w / max(un, 1e-9), wheel.radius)
@@ -93,6 +126,15 @@ class VehicleDrawing:
 
     def __init__(self, ax: Axes, spec: VehicleSpec, *, color: str, show_icr: bool,
                  labels: bool, alpha: float, zorder: float) -> None:
+        if not isinstance(ax, Axes):
+            raise ValueError(f"ax must be a matplotlib Axes, got {type(ax).__name__}")
+        if not isinstance(spec, VehicleSpec):
+            raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
+        if not isinstance(color, str) or not is_color_like(color):
+            raise ValueError(f"color must be a matplotlib colour string, got {color!r}")
+        show_icr, labels = _flag("show_icr", show_icr), _flag("labels", labels)
+        alpha = V.in_range("alpha", alpha, 0.0, 1.0)
+        zorder = V.in_range("zorder", zorder, -1e6, 1e6)
         self.ax, self.spec, self.show_icr = ax, spec, show_icr
         self._size = max(math.hypot(*p) for p in spec.body)
         self.body = Polygon(np.zeros((len(spec.body), 2)), closed=True, facecolor=color,
@@ -110,7 +152,7 @@ class VehicleDrawing:
             ax.add_patch(patch)
             self.wheels.append(patch)
         self.rollers = None
-        if any(w.kind == "mecanum" for w in spec.wheels):
+        if spec.is_swedish:
             self.rollers = LineCollection([], colors="#bbbbbb", linewidths=1.0, alpha=alpha,
                                           zorder=zorder + 0.3)
             ax.add_collection(self.rollers)
@@ -141,19 +183,32 @@ class VehicleDrawing:
             out.append(self.rollers)
         return out
 
-    def update(self, pose, steering=None, twist=None, slipping=None) -> None:
+    def update(self, pose: ArrayLike, steering: ArrayLike | None = None,
+               twist: ArrayLike | None = None, slipping: ArrayLike | None = None) -> None:
         """Move the drawing to ``pose`` (x, y, theta) with ``steering`` (``steered_names``
         order), show the ICR of body ``twist`` (if ``show_icr``) and colour the ``slipping``
         driven wheels (bool per ``wheel_names``) red."""
         spec = self.spec
-        pose = tuple(float(v) for v in V.shaped("pose", pose, (3,)).reshape(3))
+        pose = _pose(pose)
         k = len(spec.steered_names)
         steer = np.zeros(k) if steering is None else V.shaped("steering", steering, (k,))
-        per_wheel = dict(zip(spec.wheel_names, spec.steering_of(steer.reshape(k)), strict=True))
-        tw = None if twist is None else V.shaped("twist", twist, (3,)).reshape(3)
+        if steer.shape != (k,) or np.any(np.abs(steer) > math.pi):
+            raise ValueError(f"steering must be {k} angles in [-pi, pi] "
+                             f"({', '.join(spec.steered_names) or 'none'}), got {steering!r}")
+        per_wheel = dict(zip(spec.wheel_names, spec.steering_of(steer), strict=True))
+        tw = None
+        if twist is not None:
+            tw = V.shaped("twist", twist, (3,))
+            if tw.shape != (3,) or max(abs(tw[0]), abs(tw[1])) > MAX_SPEED \
+                    or abs(tw[2]) > MAX_YAW_RATE:
+                raise ValueError(f"twist must be one (vx, vy, omega) within {MAX_SPEED:g} m/s "
+                                 f"and {MAX_YAW_RATE:g} rad/s, got {twist!r}")
         slip = {}
         if slipping is not None:
-            flags = np.asarray(slipping, dtype=bool).reshape(-1)
+            flags = np.asarray(slipping)
+            if flags.dtype != bool:
+                raise ValueError(f"slipping must be booleans (one per driven wheel), "
+                                 f"got {slipping!r}")
             if flags.shape != (len(spec.wheel_names),):
                 raise ValueError(f"slipping must have {len(spec.wheel_names)} flags, "
                                  f"got shape {flags.shape}")
@@ -171,7 +226,7 @@ class VehicleDrawing:
                     angle = math.atan2(cy, cx)
             patch.set_xy(_to_world(pose, _wheel_outline(wheel, angle)))
             patch.set_facecolor(SLIP_COLOUR if slip.get(wheel.name, False) else WHEEL_COLOUR)
-            if wheel.kind == "mecanum":
+            if wheel.kind == "swedish":
                 for seg in _rollers(wheel, angle):
                     roller_segments.append(_to_world(pose, seg))
         if self.rollers is not None:
@@ -196,7 +251,7 @@ class VehicleDrawing:
             self.icr_lines.set_segments([])
         else:
             self.icr.set_data([icr[0]], [icr[1]])
-            pts = _to_world(pose, np.array([w.position for w in spec.wheels if w.driven]))
+            pts = _to_world(pose, np.array([w.position for w in spec.driven_wheels]))
             self.icr_lines.set_segments([np.array([icr, p]) for p in pts])
 
     def remove(self) -> None:
@@ -205,8 +260,9 @@ class VehicleDrawing:
             artist.remove()
 
 
-def draw_vehicle(ax: Axes, spec: VehicleSpec, pose, steering=None, *, show_icr: bool = False,
-                 twist=None, slipping=None, labels: bool = False, color: str = PALETTE[0],
+def draw_vehicle(ax: Axes, spec: VehicleSpec, pose: ArrayLike, steering: ArrayLike | None = None, *,
+                 show_icr: bool = False, twist: ArrayLike | None = None,
+                 slipping: ArrayLike | None = None, labels: bool = False, color: str = PALETTE[0],
                  alpha: float = 1.0, zorder: float = 3.0) -> VehicleDrawing:
     """Draw ``spec`` top-down at ``pose`` on ``ax``; returns a handle to move it.
 
@@ -241,10 +297,7 @@ def draw_vehicle(ax: Axes, spec: VehicleSpec, pose, steering=None, *, show_icr: 
     ([np.float64(0.0)], [np.float64(0.2)])
     >>> drawing.update((1.0, 0.0, 0.5))
     """
-    if not isinstance(spec, VehicleSpec):
-        raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
-    alpha = V.in_range("alpha", alpha, 0.0, 1.0)
-    drawing = VehicleDrawing(ax, spec, color=color, show_icr=bool(show_icr), labels=labels,
+    drawing = VehicleDrawing(ax, spec, color=color, show_icr=show_icr, labels=labels,
                              alpha=alpha, zorder=zorder)
     drawing.update(pose, steering, twist, slipping)
     # Let the axes' autoscaling see the drawing (its artists were created empty).
@@ -264,7 +317,7 @@ class _PaletteHTMLWriter(HTMLWriter):
     The figure's static part (axes, grid, walls, plan, legend) is drawn once; each frame then
     restores it and draws only the moving artists (blitting), several times faster than
     redrawing the figure. With ``colors``, frames are stored as palette PNGs (no dithering),
-    3-4 times smaller (:func:`wheelkin.animation.to_html` does that too, by default).
+    3-4 times smaller (``wheelkin.animation.to_html`` does that too, by default).
     """
 
     def __init__(self, *args, colors: int | None = None, dynamic=(), **kwargs) -> None:
@@ -306,15 +359,43 @@ class _PaletteHTMLWriter(HTMLWriter):
         self._saved_frames.append(data)
 
 
+def _colors(value) -> int | None:
+    if value is not None and (isinstance(value, bool) or not isinstance(value, int | np.integer)
+                              or not 2 <= value <= 256):
+        raise ValueError(f"colors must be an integer in [2, 256] or None, got {value!r}")
+    return None if value is None else int(value)
+
+
 class SandboxAnimation(FuncAnimation):
     """A FuncAnimation whose :meth:`to_jshtml` blits its frames (``dynamic`` lists the artists
     that move; the rest is drawn once) and optionally stores them with a palette of
-    ``colors`` colours."""
+    ``colors`` colours (2..256, or None for full colour).
 
-    def __init__(self, *args, colors: int | None = None, dynamic=(), **kwargs) -> None:
-        self._colors = colors
+    ``fig``, ``func`` and ``frames`` (an int >= 1, a non-empty sequence or an iterator; not
+    None: the player needs an end) are matplotlib's; further keyword arguments go to
+    :class:`~matplotlib.animation.FuncAnimation`.
+    """
+
+    def __init__(self, fig: Figure, func: Callable[..., Any], frames: Any, *,
+                 colors: int | None = None, dynamic: Iterable[Artist] = (),
+                 **kwargs: Any) -> None:
+        if not isinstance(fig, Figure):
+            raise ValueError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
+        if not callable(func):
+            raise ValueError(f"func must be callable (frame) -> artists, got {func!r}")
+        if frames is None or isinstance(frames, bool | float | str | bytes) or (
+                isinstance(frames, int | np.integer) and frames < 1) or (
+                isinstance(frames, Sequence | np.ndarray) and len(frames) == 0) or not (
+                isinstance(frames, int | np.integer) or hasattr(frames, "__iter__")):
+            raise ValueError(f"frames must be an integer >= 1, a non-empty sequence or an "
+                             f"iterator, got {frames!r}")
+        self._colors = _colors(colors)
+        if isinstance(dynamic, str) or not hasattr(dynamic, "__iter__"):
+            raise ValueError(f"dynamic must be a sequence of matplotlib artists, got {dynamic!r}")
         self._dynamic = list(dynamic)
-        super().__init__(*args, **kwargs)
+        if not all(isinstance(a, Artist) for a in self._dynamic):
+            raise ValueError(f"dynamic must be a sequence of matplotlib artists, got {dynamic!r}")
+        super().__init__(fig, func, frames, **kwargs)
 
     _grabbing = False
 
@@ -322,7 +403,16 @@ class SandboxAnimation(FuncAnimation):
         if not self._grabbing:  # the palette writer draws each frame itself
             super()._post_draw(framedata, blit)
 
-    def to_jshtml(self, fps=None, embed_frames=True, default_mode=None) -> str:
+    def to_jshtml(self, fps: float | None = None, embed_frames: bool = True,
+                  default_mode: str | None = None) -> str:
+        """The animation as an HTML player (matplotlib's), its frames blitted; ``fps`` in
+        [0.01, 1000] (default: from the interval), ``default_mode`` "loop", "once" or
+        "reflect"."""
+        if fps is not None:
+            fps = V.in_range("fps", fps, 0.01, 1000.0)
+        _flag("embed_frames", embed_frames)
+        if default_mode is not None:
+            V.choice("default_mode", default_mode, ("loop", "once", "reflect"))
         if not embed_frames:  # pragma: no cover - the book always embeds
             return super().to_jshtml(fps, embed_frames, default_mode)
         if fps is None:
@@ -349,25 +439,26 @@ def _as_list(value, kind, name):
         return [value]
     if isinstance(value, Sequence) and value and all(isinstance(v, kind) for v in value):
         return list(value)
-    raise ValueError(f"{name} must be a {kind.__name__} or a non-empty list of them")
+    raise ValueError(f"{name} must be a {kind.__name__} or a non-empty list of them, "
+                     f"got {type(value).__name__}")
 
 
 def animate(
-    trajectory,
-    spec,
+    trajectory: Trajectory | Sequence[Trajectory],
+    spec: VehicleSpec | Sequence[VehicleSpec],
     *,
     walls: Sequence = (),
-    plan=None,
+    plan: ArrayLike | None = None,
     extra_paths: Mapping | None = None,
     frames: int = 60,
     trail: bool = True,
     title: str | None = None,
-    figsize=(6.7, 4.2),
+    figsize: tuple[float, float] = (6.7, 4.2),
     dpi: int = 100,
     show_icr: bool = False,
     names: Sequence[str] | None = None,
     interval: float | None = None,
-    limits=None,
+    limits: ArrayLike | None = None,
     colors: int | None = None,
 ) -> SandboxAnimation:
     """Animate recorded trajectories top-down.
@@ -392,18 +483,18 @@ def animate(
         Draw the path travelled so far.
     title : str, optional
     figsize, dpi
-        Figure size (in) and resolution.
+        Figure size (in, each side in [1, 20]) and resolution (in [10, 600]).
     show_icr : bool
         Mark the ICR of each vehicle.
     names : list of str, optional
         Legend labels (default: the specs' names when there are several vehicles).
     interval : float, optional
-        Milliseconds between frames (default: real time, within 40-250 ms).
+        Milliseconds between frames, in [1, 60000] (default: real time, within 40-250 ms).
     limits : (xmin, xmax, ymin, ymax), optional
-        Axes limits (default: fitted to everything drawn).
+        Axes limits, xmin < xmax, ymin < ymax (default: fitted to everything drawn).
     colors : int or None
         Palette size of the frames ``to_jshtml`` embeds (2..256), or None for full colour
-        (:func:`wheelkin.animation.to_html` re-encodes them with a palette anyway).
+        (``wheelkin.animation.to_html`` re-encodes them with a palette anyway).
 
     Returns
     -------
@@ -419,23 +510,35 @@ def animate(
     if isinstance(frames, bool) or not isinstance(frames, int | np.integer) \
             or not 2 <= frames <= 400:
         raise ValueError(f"frames must be an integer in [2, 400], got {frames!r}")
-    dpi = V.positive("dpi", dpi)
+    dpi = V.in_range("dpi", dpi, *DPI_RANGE)
     size = V.shaped("figsize", figsize, (2,))
-    if np.any(size <= 0):
-        raise ValueError(f"figsize must be positive, got {figsize!r}")
-    wall_list = [V.finite_array("walls", w) for w in walls]
+    if size.shape != (2,) or np.any(size < FIGSIZE_RANGE[0]) or np.any(size > FIGSIZE_RANGE[1]):
+        raise ValueError(f"figsize must be (width, height) in inches, each in "
+                         f"[{FIGSIZE_RANGE[0]:g}, {FIGSIZE_RANGE[1]:g}], got {figsize!r}")
+    trail, show_icr = _flag("trail", trail), _flag("show_icr", show_icr)
+    if title is not None and not isinstance(title, str):
+        raise ValueError(f"title must be a string or None, got {title!r}")
+    if isinstance(walls, str | bytes) or not isinstance(walls, Sequence | np.ndarray):
+        raise ValueError(f"walls must be a sequence of segments ((x0, y0), (x1, y1)), "
+                         f"got {walls!r}")
+    wall_list = [_points(f"walls[{i}]", w) for i, w in enumerate(walls)]
     if any(w.shape != (2, 2) for w in wall_list):
         raise ValueError("walls must be segments ((x0, y0), (x1, y1))")
-    plan_arr = None if plan is None else V.shaped("plan", plan, (2,))
+    plan_arr = None if plan is None else _points("plan", plan)
+    if extra_paths is not None and not isinstance(extra_paths, Mapping):
+        raise ValueError(f"extra_paths must be a mapping {{label: path}}, got {extra_paths!r}")
     extras = {}
     for label, path in (extra_paths or {}).items():
         arr = V.finite_array(f"extra_paths[{label!r}]", path)
         if arr.ndim != 2 or arr.shape[1] not in (2, 3) or len(arr) < 1:
             raise ValueError(f"extra_paths[{label!r}] must have shape (N, 2) or (N, 3), "
                              f"got {arr.shape}")
-        extras[str(label)] = arr[:, :2]
+        extras[str(label)] = _points(f"extra_paths[{label!r}]", arr[:, :2])
     if names is None:
         names = [s.name for s in specs] if len(specs) > 1 else [None]
+    if isinstance(names, str) or not isinstance(names, Sequence) \
+            or not all(n is None or isinstance(n, str) for n in names):
+        raise ValueError(f"names must be a list of str (or None entries), got {names!r}")
     names = list(names)
     if len(names) != len(trajs):
         raise ValueError(f"names must give one label per trajectory ({len(trajs)})")
@@ -445,12 +548,17 @@ def animate(
     picks = [np.clip(np.searchsorted(tr.t, times - 1e-12), 0, len(tr) - 1) for tr in trajs]
     if interval is None:
         interval = min(250.0, max(40.0, 1000.0 * t_end / max(frames - 1, 1)))
-    interval = V.positive("interval", interval)
-    if colors is not None and (isinstance(colors, bool) or not isinstance(colors, int | np.integer)
-                               or not 2 <= colors <= 256):
-        raise ValueError(f"colors must be an integer in [2, 256] or None, got {colors!r}")
+    interval = V.in_range("interval", interval, *INTERVAL_RANGE)
+    colors = _colors(colors)
+    lim = None
+    if limits is not None:
+        lim = V.shaped("limits", limits, (4,))
+        if lim.shape != (4,) or not (lim[0] < lim[1] and lim[2] < lim[3]) \
+                or np.any(np.abs(lim) > MAX_COORDINATE):
+            raise ValueError(f"limits must be (xmin, xmax, ymin, ymax) with xmin < xmax, "
+                             f"ymin < ymax, within {MAX_COORDINATE:g} m, got {limits!r}")
 
-    fig = Figure(figsize=tuple(size), dpi=dpi, layout="none")
+    fig = Figure(figsize=tuple(size), dpi=dpi, layout=fixed_layout())
     ax = fig.add_subplot()
     ax.set_aspect("equal")
     ax.grid(True, color="#dddddd", linewidth=0.6)
@@ -478,7 +586,6 @@ def animate(
         ax.set_xlim(lo[0], hi[0])
         ax.set_ylim(lo[1], hi[1])
     else:
-        lim = V.shaped("limits", limits, (4,)).reshape(4)
         ax.set_xlim(lim[0], lim[1])
         ax.set_ylim(lim[2], lim[3])
 
@@ -497,8 +604,9 @@ def animate(
         (line,) = ax.plot([], [], ":", color=PALETTE[(len(trajs) + j) % len(PALETTE)],
                           linewidth=1.5, label=label, zorder=2.5)
         extra_lines.append((line, arr))
-    stamp = ax.text(0.02, 0.97, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
-                    bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8})
+    stamp = ax.text(0.03, 0.965, "", transform=ax.transAxes, ha="left", va="top", fontsize=9,
+                    bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8,
+                          "boxstyle": "square,pad=0.2"})  # clear of the spine and ticks
     if any(names) or extras or plan_arr is not None:
         ax.legend(loc="lower right", fontsize=8, framealpha=0.8)
     fig.tight_layout()

@@ -23,12 +23,24 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from wheelkin import _validate as V
 
 __all__ = ["Encoder"]
 
 _BLOCK = 4096
+#: Counts per revolution an encoder may have (an ideal one aside), and the largest noise, counts.
+STEPS_PER_REV_RANGE = (1.0, 1e9)
+MAX_NOISE = 1e6
+#: The largest reading: counts stay exact integers of int64 (and of a float) below it.
+MAX_COUNT = 2.0**52
+
+
+def _integer(name: str, value, low: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
+        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+    return int(value)
 
 
 class Encoder:
@@ -37,13 +49,16 @@ class Encoder:
     Parameters
     ----------
     n : int
-        Number of wheels.
+        Number of wheels (>= 1).
     steps_per_rev : float or None
-        Counts per wheel revolution; None = ideal (angle in rad).
+        Counts per wheel revolution, in [1, 1e9]; None = ideal (angle in rad).
     noise : float
-        Standard deviation of the edge jitter, counts.
+        Standard deviation of the edge jitter, counts (in [0, 1e6]; 0 for an ideal encoder).
     seed : int
-        Seed of the noise generator.
+        Seed of the noise generator (>= 0).
+
+    Readings stay below 2**52 counts in magnitude (``ValueError`` naming ``angles`` beyond:
+    an integer count would no longer be exact).
 
     Examples
     --------
@@ -56,13 +71,14 @@ class Encoder:
 
     def __init__(self, n: int, steps_per_rev: float | None, noise: float = 0.0,
                  seed: int = 0) -> None:
-        self.n = int(n)
-        self.steps_per_rev = None if steps_per_rev is None else V.positive("steps_per_rev",
-                                                                          steps_per_rev)
-        self.noise = V.nonnegative("encoder_noise", noise)
+        self.n = _integer("n", n, 1)
+        self.steps_per_rev = None if steps_per_rev is None else V.in_range(
+            "steps_per_rev", steps_per_rev, *STEPS_PER_REV_RANGE)
+        self.noise = V.in_range("noise", noise, 0.0, MAX_NOISE)
         if self.steps_per_rev is None and self.noise > 0:
-            raise ValueError("encoder_noise must be 0 when steps_per_rev is None (ideal encoder)")
-        self._rng = np.random.default_rng(seed)
+            raise ValueError("noise (a VehicleSpec's encoder_noise) must be 0 when "
+                             "steps_per_rev is None (ideal encoder)")
+        self._rng = np.random.default_rng(_integer("seed", seed, 0))
         self._blocks: list[np.ndarray] = []
 
     @property
@@ -78,19 +94,36 @@ class Encoder:
         table = np.concatenate(self._blocks[:need]) if need else np.zeros((0, self.n))
         return table[steps]
 
-    def counts(self, angles, step) -> np.ndarray:
-        """Readings for wheel ``angles`` (rad, shape (..., n)) at simulation ``step`` (int(s))."""
-        a = np.asarray(angles, dtype=float)
+    def _wheels(self, name: str, value) -> np.ndarray:
+        arr = V.shaped(name, value, (self.n,))
+        scale = 1.0 if self.steps_per_rev is None else self.steps_per_rev / (2 * math.pi)
+        if np.any(np.abs(arr) * scale > MAX_COUNT):
+            raise ValueError(f"{name} must stay within {MAX_COUNT:g} counts "
+                             f"({MAX_COUNT / scale:g} rad) of zero")
+        return arr
+
+    def counts(self, angles: ArrayLike, step: ArrayLike) -> np.ndarray:
+        """Readings for wheel ``angles`` (rad, shape (..., n)) at simulation ``step`` (an int
+        >= 0, or one per reading: shape ``angles.shape[:-1]``)."""
+        a = self._wheels("angles", angles)
+        s = np.asarray(step)
+        if s.dtype == bool or s.dtype.kind not in "iu" or np.any(s < 0):
+            raise ValueError(f"step must be an integer >= 0 (or an array of them), got {step!r}")
+        if s.shape not in ((), a.shape[:-1]):
+            raise ValueError(f"step must be one integer or have shape {a.shape[:-1]} "
+                             f"(angles' readings), got shape {s.shape}")
         if not self.quantised:
             return a.copy()
         x = a * (self.steps_per_rev / (2 * math.pi)) + 0.5
         if self.noise > 0:
-            x = x + self._noise(np.asarray(step))
+            x = x + self._noise(np.broadcast_to(s, a.shape[:-1]))
         return np.floor(x).astype(np.int64)
 
-    def angles(self, counts) -> np.ndarray:
-        """The wheel angles (rad) that readings ``counts`` stand for."""
-        c = np.asarray(counts, dtype=float)
+    def angles(self, counts: ArrayLike) -> np.ndarray:
+        """The wheel angles (rad) that readings ``counts`` (shape (..., n)) stand for."""
+        c = V.shaped("counts", counts, (self.n,))
+        if np.any(np.abs(c) > MAX_COUNT):
+            raise ValueError(f"counts must be within {MAX_COUNT:g} of zero")
         if not self.quantised:
             return c
         return c * (2 * math.pi / self.steps_per_rev)

@@ -1,51 +1,56 @@
-"""Vehicle geometry for the sandbox: wheels, bodies, masses, and the book's four vehicles.
+r"""Vehicles for the sandbox: a rigid body on the wheels of :mod:`wheelkin.unified`.
 
 A vehicle is a frozen :class:`VehicleSpec`: a rigid body (mass, yaw inertia, a convex outline)
-carrying :class:`Wheel` s. All coordinates are in the body frame of REP-103 (x forward, y left,
-metres), measured from the vehicle's *reference point*: the axle midpoint of a differential
-drive, the geometric centre of the others. The reference point is also the rigid body's mass
-centre in the simulation (a simplification: the normal load on each wheel is set separately,
-by its ``load_fraction``).
+on wheels that are :class:`wheelkin.unified.WheelConstraint` s, the one wheel model of the
+library (chapter 8), plus what physics needs and kinematics does not: the share of the weight
+on each wheel (``load_fractions``) and which steered wheels roll freely (``free_rolling``).
+All coordinates are in the body frame of REP-103 (x forward, y left, metres), measured from
+the vehicle's *reference point*: the axle midpoint of a differential drive, the rear-axle
+midpoint of a car, the geometric centre of the others. The reference point is also the rigid
+body's mass centre in the simulation (a simplification: the normal load on each wheel is set
+separately, by its load fraction).
 
-Each wheel has a *rolling direction* ``e`` at angle ``heading`` (+ its steering angle, for a
-steered wheel) in the body frame, and a *lateral direction* ``n`` (``e`` turned by +90 deg).
-Its kind says which velocities the ground contact constrains (see :mod:`.contact`):
+What the ground contact constrains (see :mod:`.contact`), by the wheel's kind:
 
 ``"fixed"`` / ``"steered"``
-    a conventional wheel: the contact point's velocity along ``e`` equals the wheel's surface
-    speed ``r_w * phi``, across it zero (both friction-limited, by one Coulomb circle);
-``"mecanum"``
-    a wheel with passive rollers whose axes sit at ``roller_angle`` (gamma) from the wheel's
-    axle, counter-clockwise seen from above, for the roller touching the ground: only the
-    velocity along that roller axis ``u`` is constrained, to ``r_w * phi * (u . e)``;
+    a conventional wheel: the contact point's velocity along the rolling direction
+    :math:`\mathbf e` equals the rim speed :math:`r_w\dot\varphi`, across it (along
+    :math:`\mathbf n`) zero, both friction-limited by one Coulomb circle
+    (:func:`wheelkin.unified.rolling_row`, :func:`~wheelkin.unified.sliding_row`);
+``"swedish"``
+    a mecanum or omni wheel: only the velocity along the ground roller's axis :math:`\mathbf u`
+    is constrained, to :math:`r_w\dot\varphi\,(\mathbf u\cdot\mathbf e)`
+    (:func:`wheelkin.unified.roller_row`);
 ``"caster"``
     a passive swivel wheel: it carries its share of the weight and exerts no force;
-``"free"``
-    a steered wheel that rolls freely (no drive torque, e.g. a car's front wheel): only its
-    lateral velocity is constrained, to zero; along ``e`` it exerts no force. Its "rate" is
-    not a command: it is the rate it rolls at in the kinematic model (what its wheel angle
-    and encoder record).
+a steered wheel named in ``free_rolling``
+    rolls freely (no drive torque, a car's front wheel): only its sliding row is enforced.
+    Its "rate" is not a command but the rate it rolls at in the kinematic model (what its
+    wheel angle and encoder record).
 
-Driven wheels (every kind but casters) are commanded in wheel terms: an angular rate ``phi``
-(rad/s, positive = rolling forward along ``e``) per wheel in :attr:`VehicleSpec.wheel_names`
-order, and a steering angle ``delta`` (rad, counter-clockwise) per steered wheel in
-:attr:`VehicleSpec.steered_names` order. :func:`ideal_commands` turns a body twist into the
-rates (and steering) of the ideal kinematic model.
+Every wheel but a caster has a rate: commanded in wheel terms, an angular rate
+:math:`\dot\varphi` (rad/s, positive rolling forward along :math:`\mathbf e`) per wheel in
+:attr:`VehicleSpec.wheel_names` order, and a steering angle :math:`\delta` (rad,
+counter-clockwise) per steered wheel in ``VehicleSpec.steered_names`` order. The spec holds
+its wheels at zero steering; the robot's steering is state, commanded while it runs.
+:func:`ideal_commands` turns a body twist into the rates (and steering) of the ideal kinematic
+model.
 
-The ready-made vehicles, with the values we assumed where the sources are silent:
+The ready-made vehicles take their geometry from the chapters' modules; where the sources are
+silent, the values are our assumptions:
 
-========================= ========================================================= ========
-spec                      geometry                                                  mass
-========================= ========================================================= ========
+========================= =========================================================== ========
+spec                      geometry                                                    mass
+========================= =========================================================== ========
 :data:`RADON_ULZER`       diff drive, track 0.085 m, wheel circumference 0.113097 m,  0.25 kg
                           encoder 12 * 75.81 counts per wheel revolution (8043 /m)
-:data:`LAB_ROBOT`         skid steer, wheels r = 0.04 m at x = +-0.05 m,             1.4 kg
+:data:`LAB_ROBOT`         skid steer, wheels r = 0.04 m at x = +-0.05 m,              1.4 kg
                           y = +-0.06 m, body 0.2 m x 0.1 m (Webots 4-wheel robot)
-:data:`MECANUM_ROBOT`     mecanum, r = 0.05 m, half wheelbase 0.15 m, half track     4.0 kg
+:data:`MECANUM_ROBOT`     mecanum, r = 0.05 m, half wheelbase 0.15 m, half track      4.0 kg
                           0.15 m, rollers at 45 deg (a generic 30 cm platform)
-:data:`OPEN_SOURCE_ROVER` six wheels, four corners steered, d1..d4 of the OSR         11 kg
-                          document (7.254, 10.5, 10.5, 10.073 in), r = 0.06 m
-========================= ========================================================= ========
+:data:`OPEN_SOURCE_ROVER` six wheels, four corners steered,                           11 kg
+                          :data:`wheelkin.rover.OSR_GEOMETRY`, r = 0.06 m
+========================= =========================================================== ========
 
 The yaw inertia defaults to that of the body outline as a uniform plate about the reference
 point. The friction coefficient defaults to 0.8 (rubber on a dry floor).
@@ -55,12 +60,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from wheelkin import _validate as V
+from wheelkin import rover as rover_model
+from wheelkin import unified
 from wheelkin.frames import fold_half_turn
+from wheelkin.mecanum import MecanumGeometry
+from wheelkin.unified import WheelConstraint
 
 __all__ = [
     "GRAVITY",
@@ -69,7 +80,6 @@ __all__ = [
     "OPEN_SOURCE_ROVER",
     "RADON_ULZER",
     "VehicleSpec",
-    "Wheel",
     "diff_drive",
     "ideal_commands",
     "mecanum",
@@ -81,115 +91,19 @@ __all__ = [
 #: Gravitational acceleration used for the wheels' normal loads, N_i = load_fraction * m * g.
 GRAVITY = 9.81
 
-WHEEL_KINDS = ("fixed", "steered", "mecanum", "caster", "free")
 
-
-def _point(name: str, value) -> tuple[float, float]:
-    arr = V.shaped(name, value, (2,))
-    if arr.ndim != 1:
-        raise ValueError(f"{name} must be one point (x, y), got shape {arr.shape}")
-    return (float(arr[0]), float(arr[1]))
-
-
-@dataclass(frozen=True)
-class Wheel:
-    """One wheel of a vehicle (body frame, SI).
-
-    Parameters
-    ----------
-    name : str
-        Unique within the vehicle, e.g. ``"FL"``.
-    position : (float, float)
-        Contact point (x, y) in the body frame, m.
-    heading : float
-        Angle of the rolling direction ``e`` from the body x axis at zero steering, rad.
-    radius : float
-        Wheel radius r_w, m (> 0).
-    kind : {"fixed", "steered", "mecanum", "caster", "free"}
-        See the module docstring.
-    roller_angle : float
-        Mecanum only: angle gamma from the wheel's axle (``n``) to the axis ``u`` of the roller
-        that touches the ground, counter-clockwise seen from above, rad; 0 < |gamma| < pi/2.
-    load_fraction : float
-        Share of the vehicle's weight m*g resting on this wheel, in [0, 1].
-    width : float, optional
-        Tyre width for drawing, m (default 0.6 * radius).
-
-    Examples
-    --------
-    >>> Wheel("L", (0.0, 0.05), radius=0.02, load_fraction=0.5).kind
-    'fixed'
-    >>> Wheel("L", (0.0, 0.05), radius=-0.02)
-    Traceback (most recent call last):
-    ...
-    ValueError: radius must be a finite number > 0, got -0.02
-    """
-
-    name: str
-    position: tuple[float, float]
-    heading: float = 0.0
-    radius: float = 0.05
-    kind: str = "fixed"
-    roller_angle: float = 0.0
-    load_fraction: float = 0.25
-    width: float | None = None
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"name must be a non-empty string, got {self.name!r}")
-        object.__setattr__(self, "position", _point("position", self.position))
-        object.__setattr__(self, "heading", V.finite("heading", self.heading))
-        object.__setattr__(self, "radius", V.positive("radius", self.radius))
-        V.choice("kind", self.kind, WHEEL_KINDS)
-        gamma = V.finite("roller_angle", self.roller_angle)
-        if self.kind == "mecanum" and not 0 < abs(gamma) < math.pi / 2:
-            raise ValueError(
-                f"roller_angle must satisfy 0 < |roller_angle| < pi/2 for a mecanum wheel, "
-                f"got {self.roller_angle!r}"
-            )
-        object.__setattr__(self, "roller_angle", gamma)
-        object.__setattr__(
-            self, "load_fraction", V.in_range("load_fraction", self.load_fraction, 0.0, 1.0)
-        )
-        if self.width is not None:
-            object.__setattr__(self, "width", V.positive("width", self.width))
-
-    @property
-    def driven(self) -> bool:
-        """True for every kind but a caster."""
-        return self.kind != "caster"
-
-    @property
-    def drawn_width(self) -> float:
-        """Tyre width used for drawing, m."""
-        return self.width if self.width is not None else 0.6 * self.radius
-
-
-def _constrains_twist(driven) -> bool:
-    """True if the driven wheels' constraints (at zero steering) have rank 3 on the twist."""
-    rows = []
-    for w in driven:
-        px, py = w.position
-        h = w.heading
-        if w.kind == "mecanum":
-            a = h + math.pi / 2 + w.roller_angle
-            dirs = [(math.cos(a), math.sin(a))]
-        elif w.kind == "free":
-            dirs = [(-math.sin(h), math.cos(h))]
-        else:
-            dirs = [(math.cos(h), math.sin(h)), (-math.sin(h), math.cos(h))]
-        rows += [(dx, dy, px * dy - py * dx) for dx, dy in dirs]
+def _rank3(rows: list) -> bool:
     sv = np.linalg.svd(np.array(rows), compute_uv=False)
-    return len(sv) == 3 and sv[-1] > 1e-9 * sv[0]
+    return len(sv) == 3 and bool(sv[-1] > 1e-9 * sv[0])
 
 
-def polygon_inertia(mass: float, vertices) -> float:
-    """Yaw moment of inertia of a uniform polygonal plate about the body-frame origin.
+def polygon_inertia(mass: float, vertices: npt.ArrayLike) -> float:
+    r"""Yaw moment of inertia of a uniform polygonal plate about the body-frame origin.
 
-    For the outline's vertices p_k (counter-clockwise or clockwise),
+    For the outline's vertices :math:`p_k` (counter-clockwise or clockwise),
 
-    I = m * sum_k c_k (p_k.p_k + p_k.p_{k+1} + p_{k+1}.p_{k+1}) / (6 * sum_k c_k),
-    c_k = p_k x p_{k+1},
+    .. math:: I = m\,\frac{\sum_k c_k\,(p_k\cdot p_k + p_k\cdot p_{k+1}
+              + p_{k+1}\cdot p_{k+1})}{6\sum_k c_k}, \qquad c_k = p_k \times p_{k+1},
 
     in kg m^2 (the origin need not be the centroid).
 
@@ -206,10 +120,14 @@ def polygon_inertia(mass: float, vertices) -> float:
         raise ValueError(f"vertices must hold at least 3 points (x, y), got shape {p.shape}")
     q = np.roll(p, -1, axis=0)
     cross = p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]
-    if abs(cross.sum()) < 1e-15:
+    if not abs(cross.sum()) >= 1e-15:
         raise ValueError("vertices must enclose a non-zero area")
     terms = (p * p).sum(1) + (p * q).sum(1) + (q * q).sum(1)
-    return float(m * (cross * terms).sum() / (6.0 * cross.sum()))
+    inertia = float(m * (cross * terms).sum() / (6.0 * cross.sum()))
+    if not math.isfinite(inertia):
+        raise ValueError(f"vertices and mass give no finite inertia (got {inertia!r}): "
+                         "use coordinates in metres and a mass in kg of sensible size")
+    return inertia
 
 
 @dataclass(frozen=True)
@@ -226,9 +144,14 @@ class VehicleSpec:
         Yaw moment of inertia about the reference point, kg m^2 (> 0).
     body : sequence of (x, y)
         Convex outline of the body (collision shape and drawing), m.
-    wheels : tuple of Wheel
-        All wheels, casters included. The driven ones must be all mecanum or all conventional
-        (fixed/steered), and the load fractions must add up to 1.
+    wheels : tuple of wheelkin.unified.WheelConstraint
+        All wheels, casters included, at zero steering (``steering`` 0). The wheels that are
+        not casters must be all Swedish or all conventional (fixed/steered).
+    load_fractions : tuple of float, optional
+        Share of the weight m g on each wheel, in ``wheels`` order, each in [0, 1], adding up
+        to 1 (default: equal shares).
+    free_rolling : tuple of str
+        Names of the steered wheels that roll freely (not driven), e.g. a car's front wheels.
     mu : float
         Coulomb friction coefficient of the tyres on the ground (> 0).
     steps_per_rev : float or None
@@ -243,16 +166,11 @@ class VehicleSpec:
     steered_names : tuple of str, optional
         Order of the steering angles (default: the steered wheels in ``wheels`` order).
 
-    Attributes
-    ----------
-    wheel_names : tuple of str
-        Names of the driven wheels: the order of rates, encoders and slip flags.
-
     Examples
     --------
     >>> spec = diff_drive(0.1, 0.02)
-    >>> spec.wheel_names, spec.steered_names
-    (('L', 'R'), ())
+    >>> spec.wheel_names, spec.steered_names, spec.load_fractions
+    (('L', 'R'), (), (0.4, 0.4, 0.2))
     >>> spec.replace(mu=0.2).mu
     0.2
     >>> spec.replace(mu=0)
@@ -265,7 +183,9 @@ class VehicleSpec:
     mass: float
     inertia: float
     body: tuple[tuple[float, float], ...]
-    wheels: tuple[Wheel, ...]
+    wheels: tuple[WheelConstraint, ...]
+    load_fractions: tuple[float, ...] | None = None
+    free_rolling: tuple[str, ...] = ()
     mu: float = 0.8
     steps_per_rev: float | None = None
     encoder_noise: float = 0.0
@@ -283,25 +203,58 @@ class VehicleSpec:
             raise ValueError(f"body must hold at least 3 vertices (x, y), got shape {body.shape}")
         polygon_inertia(1.0, body)  # raises on a degenerate outline
         object.__setattr__(self, "body", tuple((float(x), float(y)) for x, y in body))
+        if isinstance(self.wheels, WheelConstraint) or not isinstance(self.wheels, Sequence):
+            raise ValueError("wheels must be a non-empty sequence of WheelConstraint, got "
+                             f"{type(self.wheels).__name__}")
         wheels = tuple(self.wheels)
-        if not wheels or not all(isinstance(w, Wheel) for w in wheels):
-            raise ValueError("wheels must be a non-empty sequence of Wheel")
+        if not wheels or not all(isinstance(w, WheelConstraint) for w in wheels):
+            raise ValueError("wheels must be a non-empty sequence of WheelConstraint")
         names = [w.name for w in wheels]
         if len(set(names)) != len(names):
             raise ValueError(f"wheels must have unique names, got {names}")
-        driven = [w for w in wheels if w.driven]
+        turned = [w.name for w in wheels if w.steering != 0.0]
+        if turned:
+            raise ValueError(f"wheels must be at zero steering (the robot's steering is "
+                             f"commanded while it runs), got steering on {turned}")
+        driven = [w for w in wheels if w.kind != "caster"]
         if not driven:
-            raise ValueError("wheels must include at least one driven (non-caster) wheel")
-        kinds = {w.kind == "mecanum" for w in driven}
-        if len(kinds) > 1:
-            raise ValueError("wheels must not mix mecanum and conventional driven wheels")
-        total = sum(w.load_fraction for w in wheels)
-        if abs(total - 1.0) > 1e-9:
-            raise ValueError(f"wheels' load_fraction must add up to 1, got {total!r}")
-        if not _constrains_twist(driven):
-            raise ValueError("wheels must fix all three body velocities: at least two "
-                             "conventional wheels apart, or three mecanum wheels")
+            raise ValueError("wheels must include at least one wheel that is not a caster")
+        if len({w.kind == "swedish" for w in driven}) > 1:
+            raise ValueError("wheels must not mix swedish and conventional wheels")
         object.__setattr__(self, "wheels", wheels)
+        n = len(wheels)
+        if self.load_fractions is None:
+            shares = (1.0 / n,) * n
+        else:
+            arr = V.shaped("load_fractions", self.load_fractions, (n,))
+            if arr.shape != (n,):
+                raise ValueError(f"load_fractions must have one share per wheel ({n}), "
+                                 f"got shape {arr.shape}")
+            shares = tuple(V.in_range("load_fractions", float(x), 0.0, 1.0) for x in arr)
+            total = math.fsum(shares)
+            if abs(total - 1.0) > 1e-9:
+                raise ValueError(f"load_fractions must add up to 1, got {total!r}")
+        object.__setattr__(self, "load_fractions", shares)
+        if isinstance(self.free_rolling, str) or not isinstance(self.free_rolling, Sequence):
+            raise ValueError("free_rolling must be a sequence of wheel names, got "
+                             f"{self.free_rolling!r}")
+        free = tuple(self.free_rolling)
+        steerable = [w.name for w in wheels if w.kind == "steered"]
+        if any(f not in steerable for f in free) or len(set(free)) != len(free):
+            raise ValueError(f"free_rolling must name steered wheels ({steerable}) once each, "
+                             f"got {free}")
+        object.__setattr__(self, "free_rolling", free)
+        rows = []
+        for w in driven:
+            if w.kind == "swedish":
+                rows.append(unified.roller_row(w))
+            else:
+                if w.name not in free:
+                    rows.append(unified.rolling_row(w))
+                rows.append(unified.sliding_row(w))
+        if not _rank3(rows):
+            raise ValueError("wheels must fix all three body velocities: at least two "
+                             "conventional wheels apart, or three swedish wheels")
         object.__setattr__(self, "mu", V.positive("mu", self.mu))
         if self.steps_per_rev is not None:
             object.__setattr__(self, "steps_per_rev", V.positive("steps_per_rev",
@@ -313,51 +266,90 @@ class VehicleSpec:
         object.__setattr__(self, "seed", int(self.seed))
         object.__setattr__(self, "motor_time_constant",
                            V.nonnegative("motor_time_constant", self.motor_time_constant))
-        steered = [w.name for w in wheels if w.kind in ("steered", "free")]
-        order = tuple(steered) if self.steered_names is None else tuple(self.steered_names)
-        if sorted(order) != sorted(steered):
+        order = tuple(steerable) if self.steered_names is None else tuple(self.steered_names)
+        if sorted(order) != sorted(steerable):
             raise ValueError(
-                f"steered_names must list the steered wheels {steered} once each, got {order}"
+                f"steered_names must list the steered wheels {steerable} once each, got {order}"
             )
         object.__setattr__(self, "steered_names", order)
 
     @property
-    def driven_wheels(self) -> tuple[Wheel, ...]:
-        """The driven wheels (every kind but casters), in :attr:`wheel_names` order."""
-        return tuple(w for w in self.wheels if w.driven)
+    def driven_wheels(self) -> tuple[WheelConstraint, ...]:
+        """The wheels that have a rate (every kind but casters), in :attr:`wheel_names`
+        order."""
+        return tuple(w for w in self.wheels if w.kind != "caster")
 
     @property
     def wheel_names(self) -> tuple[str, ...]:
-        """Names of the driven wheels: the order of rates, encoders and slip flags."""
-        return tuple(w.name for w in self.wheels if w.driven)
-
-    def steering_of(self, steering) -> tuple[float, ...]:
-        """Per driven wheel (``wheel_names`` order): its steering angle from ``steering``
-        (``steered_names`` order), 0 for an unsteered wheel."""
-        where = {name: i for i, name in enumerate(self.steered_names)}
-        return tuple(float(steering[where[w.name]]) if w.name in where else 0.0
-                     for w in self.driven_wheels)
+        """Names of the wheels that have a rate: the order of rates, encoders and slip
+        flags."""
+        return tuple(w.name for w in self.driven_wheels)
 
     @property
-    def is_mecanum(self) -> bool:
-        """True if the driven wheels are mecanum wheels."""
-        return self.driven_wheels[0].kind == "mecanum"
+    def normal_loads(self) -> np.ndarray:
+        """Static normal load on each wheel of :attr:`wheel_names`, N: load fraction * m * g
+        (the casters' share is not among them)."""
+        share = dict(zip((w.name for w in self.wheels), self.load_fractions, strict=True))
+        return np.array([share[name] for name in self.wheel_names]) * self.mass * GRAVITY
 
-    def replace(self, **changes) -> VehicleSpec:
+    @property
+    def is_swedish(self) -> bool:
+        """True if the wheels that are not casters are Swedish (mecanum or omni) wheels."""
+        return self.driven_wheels[0].kind == "swedish"
+
+    def steering_of(self, steering: Sequence[float]) -> tuple[float, ...]:
+        """Per wheel of :attr:`wheel_names`: its steering angle from ``steering``
+        (``steered_names`` order), 0 for an unsteered wheel."""
+        k = len(self.steered_names)
+        angles = V.finite_array("steering", steering)
+        if angles.shape != (k,):
+            raise ValueError(f"steering must have shape ({k},) "
+                             f"({', '.join(self.steered_names) or 'no steered wheels'}), "
+                             f"got shape {angles.shape}")
+        where = dict(zip(self.steered_names, angles.tolist(), strict=True))
+        return tuple(where.get(w.name, 0.0) for w in self.driven_wheels)
+
+    def wheels_at(self, steering: npt.ArrayLike | None = None, *,
+                  casters: bool = False) -> tuple[WheelConstraint, ...]:
+        """The wheels steered to ``steering`` (rad, ``steered_names`` order; default 0):
+        the wheels of :attr:`wheel_names` (``casters=True``: every wheel, in ``wheels``
+        order), ready for :mod:`wheelkin.unified`.
+
+        Examples
+        --------
+        >>> [round(w.steering, 2) for w in OPEN_SOURCE_ROVER.wheels_at([0.3, 0.2, -0.3, -0.2])]
+        [0.3, 0.0, -0.3, 0.2, 0.0, -0.2]
+        """
+        if not isinstance(casters, bool):
+            raise ValueError(f"casters must be True or False, got {casters!r}")
+        k = len(self.steered_names)
+        angles = np.zeros(k) if steering is None else V.shaped("steering", steering, (k,))
+        if angles.shape != (k,):
+            raise ValueError(f"steering must have shape ({k},) "
+                             f"({', '.join(self.steered_names) or 'no steered wheels'}), "
+                             f"got shape {angles.shape}")
+        where = dict(zip(self.steered_names, angles.tolist(), strict=True))
+        return tuple(w.steered_to(where[w.name]) if w.name in where else w
+                     for w in self.wheels if casters or w.kind != "caster")
+
+    def replace(self, **changes: object) -> VehicleSpec:
         """A copy with some fields changed (``dataclasses.replace``), validated again."""
-        return dataclasses.replace(self, **changes)
+        return dataclasses.replace(self, **changes)  # type: ignore[arg-type]
 
 
 def _rectangle(x0: float, x1: float, y0: float, y1: float) -> tuple[tuple[float, float], ...]:
     return ((x0, y0), (x1, y0), (x1, y1), (x0, y1))
 
 
-def _finish(name, mass, inertia, body, wheels, **kw) -> VehicleSpec:
+def _finish(name: str, mass: float, inertia: float | None, body: npt.ArrayLike,
+            wheels: Sequence[WheelConstraint], loads: Sequence[float],
+            **kw: object) -> VehicleSpec:
+    """A spec from a builder's wheels and loads: the inertia of the outline if not given."""
     mass = V.positive("mass", mass)
     if inertia is None:
         inertia = polygon_inertia(mass, body)
-    return VehicleSpec(name=name, mass=mass, inertia=inertia, body=body, wheels=tuple(wheels),
-                       **kw)
+    return VehicleSpec(name=name, mass=mass, inertia=inertia, body=body,  # type: ignore[arg-type]
+                       wheels=tuple(wheels), load_fractions=tuple(loads), **kw)  # type: ignore[arg-type]
 
 
 def diff_drive(
@@ -368,11 +360,12 @@ def diff_drive(
     inertia: float | None = None,
     caster_offset: float | None = None,
     caster_load: float = 0.2,
-    body=None,
+    body: npt.ArrayLike | None = None,
     name: str = "differential drive",
-    **kwargs,
+    **kwargs: object,
 ) -> VehicleSpec:
-    """A differential drive: wheels ("L", "R") on one axle, a passive caster "C" behind.
+    """A differential drive: the wheels of :func:`wheelkin.unified.diff_drive_wheels` (L, R
+    on one axle, a passive caster C behind).
 
     The reference point is the axle midpoint; L is at (0, +W/2), R at (0, -W/2), the caster at
     (-caster_offset, 0). The caster carries ``caster_load`` of the weight and exerts no
@@ -409,13 +402,9 @@ def diff_drive(
         raise ValueError(f"caster_load must be in [0, 1), got {caster_load!r}")
     if body is None:
         body = _rectangle(-offset - 0.2 * W, 0.5 * W, -0.4 * W, 0.4 * W)
+    wheels = unified.diff_drive_wheels(W, r, caster_offset=offset)
     drive = (1.0 - share) / 2.0
-    wheels = [
-        Wheel("L", (0.0, W / 2), 0.0, r, "fixed", load_fraction=drive),
-        Wheel("R", (0.0, -W / 2), 0.0, r, "fixed", load_fraction=drive),
-        Wheel("C", (-offset, 0.0), 0.0, 0.4 * r, "caster", load_fraction=share),
-    ]
-    return _finish(name, mass, inertia, body, wheels, **kwargs)
+    return _finish(name, mass, inertia, body, wheels, (drive, drive, share), **kwargs)
 
 
 def skid_steer(
@@ -425,11 +414,12 @@ def skid_steer(
     *,
     mass: float = 1.4,
     inertia: float | None = None,
-    body=None,
+    body: npt.ArrayLike | None = None,
     name: str = "skid steer",
-    **kwargs,
+    **kwargs: object,
 ) -> VehicleSpec:
-    """A four-wheel skid steer: fixed wheels ("FL", "FR", "RL", "RR"), sides driven together.
+    """A four-wheel skid steer: the wheels of :func:`wheelkin.unified.skid_steer_wheels`
+    ("FL", "FR", "RL", "RR", fixed), sides driven together.
 
     FL at (+a, +b), FR at (+a, -b), RL at (-a, +b), RR at (-a, -b) with a = half_wheelbase,
     b = half_track; each carries a quarter of the weight. While turning, the wheels cannot
@@ -446,13 +436,8 @@ def skid_steer(
     r = V.positive("wheel_radius", wheel_radius)
     if body is None:
         body = _rectangle(-a - r, a + r, -0.8 * b, 0.8 * b)
-    wheels = [
-        Wheel("FL", (a, b), 0.0, r, "fixed", load_fraction=0.25),
-        Wheel("FR", (a, -b), 0.0, r, "fixed", load_fraction=0.25),
-        Wheel("RL", (-a, b), 0.0, r, "fixed", load_fraction=0.25),
-        Wheel("RR", (-a, -b), 0.0, r, "fixed", load_fraction=0.25),
-    ]
-    return _finish(name, mass, inertia, body, wheels, **kwargs)
+    wheels = unified.skid_steer_wheels(b, a, r)
+    return _finish(name, mass, inertia, body, wheels, (0.25,) * 4, **kwargs)
 
 
 def mecanum(
@@ -463,15 +448,18 @@ def mecanum(
     *,
     mass: float = 4.0,
     inertia: float | None = None,
-    body=None,
+    body: npt.ArrayLike | None = None,
     name: str = "mecanum",
-    **kwargs,
+    **kwargs: object,
 ) -> VehicleSpec:
-    """A mecanum platform: wheels ("FL", "FR", "RL", "RR") with rollers in the X arrangement.
+    r"""A mecanum platform: the wheels of :func:`wheelkin.unified.mecanum_wheels` for the
+    :class:`wheelkin.mecanum.MecanumGeometry` of the arguments ("FL", "FR", "RL", "RR",
+    rollers in the X arrangement).
 
     Seen from above, the rollers on top of the wheels form an X; the rollers touching the
-    ground sit at +gamma (FL, RR) and -gamma (FR, RL) from the axle. With k = a + b
-    (a = half_wheelbase, b = half_track) and gamma = 45 deg, the ideal rates are
+    ground sit at :math:`+\gamma` (FL, RR) and :math:`-\gamma` (FR, RL) from the axle. With
+    :math:`k = a + b` (a = half_wheelbase, b = half_track) and :math:`\gamma` = 45 deg, the
+    ideal rates are
 
     FL = (vx - vy - k w)/r_w, FR = (vx + vy + k w)/r_w,
     RL = (vx + vy - k w)/r_w, RR = (vx - vy + k w)/r_w.
@@ -483,80 +471,64 @@ def mecanum(
     >>> [round(float(x), 6) for x in rates]  # forward-left: FL and RR stand still
     [0.0, 40.0, 40.0, 0.0]
     """
-    r = V.positive("wheel_radius", wheel_radius)
-    a = V.positive("half_wheelbase", half_wheelbase)
-    b = V.positive("half_track", half_track)
-    g = V.finite("roller_angle", roller_angle)
-    if not 0 < g < math.pi / 2:
-        raise ValueError(f"roller_angle must be in (0, pi/2), got {roller_angle!r}")
+    geometry = MecanumGeometry(wheel_radius, half_wheelbase, half_track, roller_angle)
+    a, b, r = geometry.half_wheelbase, geometry.half_track, geometry.wheel_radius
     if body is None:
         body = _rectangle(-a - 0.6 * r, a + 0.6 * r, -0.75 * b, 0.75 * b)
-    wheels = [
-        Wheel("FL", (a, b), 0.0, r, "mecanum", roller_angle=g, load_fraction=0.25),
-        Wheel("FR", (a, -b), 0.0, r, "mecanum", roller_angle=-g, load_fraction=0.25),
-        Wheel("RL", (-a, b), 0.0, r, "mecanum", roller_angle=-g, load_fraction=0.25),
-        Wheel("RR", (-a, -b), 0.0, r, "mecanum", roller_angle=g, load_fraction=0.25),
-    ]
-    return _finish(name, mass, inertia, body, wheels, **kwargs)
+    wheels = unified.mecanum_wheels(geometry)
+    return _finish(name, mass, inertia, body, wheels, (0.25,) * 4, **kwargs)
 
 
 def rover(
-    d1: float,
-    d2: float,
-    d3: float,
-    d4: float,
-    wheel_radius: float,
+    geometry: rover_model.RoverGeometry = rover_model.OSR_GEOMETRY,
+    wheel_radius: float = 0.06,
     *,
     mass: float = 11.0,
     inertia: float | None = None,
-    body=None,
+    body: npt.ArrayLike | None = None,
     name: str = "six-wheel rover",
-    **kwargs,
+    **kwargs: object,
 ) -> VehicleSpec:
-    """A six-wheel rover: wheels ("LF", "LM", "LB", "RF", "RM", "RB"), corners steered.
+    """A six-wheel rover: the wheels of :func:`wheelkin.unified.rover_wheels` ("LF", "LM",
+    "LB", "RF", "RM", "RB"), corners steered.
 
-    The OSR document's distances, in metres: d1 lateral offset of the corner wheels, d2
-    longitudinal offset of the back corners, d3 of the front corners, d4 lateral offset of the
-    middle wheels. LF at (d3, d1), LM at (0, d4), LB at (-d2, d1), RF at (d3, -d1), RM at
-    (0, -d4), RB at (-d2, -d1). Steered wheels in ("LF", "RF", "LB", "RB") order; the middle
-    wheels are fixed, so the ICR lies on the middle axle (y axis). Each wheel carries 1/6 of
-    the weight.
+    ``geometry`` is a :class:`wheelkin.rover.RoverGeometry` in inches or metres (its
+    ``unit``; default :data:`wheelkin.rover.OSR_GEOMETRY`, the document's); the wheels sit at
+    :func:`wheelkin.rover.wheel_positions` in metres: LF at (d3, d1), LM at (0, d4), LB at
+    (-d2, d1), RF at (d3, -d1), RM at (0, -d4), RB at (-d2, -d1). Steered wheels in ("LF",
+    "RF", "LB", "RB") order; the middle wheels are fixed, so the ICR lies on the middle axle
+    (y axis). Each wheel carries 1/6 of the weight.
 
     Examples
     --------
-    >>> spec = rover(0.184, 0.267, 0.267, 0.256, 0.06)
-    >>> spec.steered_names
-    ('LF', 'RF', 'LB', 'RB')
+    >>> spec = rover(wheel_radius=0.06)
+    >>> spec.steered_names, round(spec.wheels[0].position[0], 4)  # d3 = 10.5 in
+    (('LF', 'RF', 'LB', 'RB'), 0.2667)
     """
-    d1 = V.positive("d1", d1)
-    d2 = V.positive("d2", d2)
-    d3 = V.positive("d3", d3)
-    d4 = V.positive("d4", d4)
-    r = V.positive("wheel_radius", wheel_radius)
+    wheels = unified.rover_wheels(geometry, wheel_radius)
+    r = wheels[0].radius
     if body is None:
-        body = _rectangle(-d2 - 0.5 * r, d3 + 0.5 * r, -0.6 * d1, 0.6 * d1)
-    sixth = 1.0 / 6.0
-    wheels = [
-        Wheel("LF", (d3, d1), 0.0, r, "steered", load_fraction=sixth),
-        Wheel("LM", (0.0, d4), 0.0, r, "fixed", load_fraction=sixth),
-        Wheel("LB", (-d2, d1), 0.0, r, "steered", load_fraction=sixth),
-        Wheel("RF", (d3, -d1), 0.0, r, "steered", load_fraction=sixth),
-        Wheel("RM", (0.0, -d4), 0.0, r, "fixed", load_fraction=sixth),
-        Wheel("RB", (-d2, -d1), 0.0, r, "steered", load_fraction=sixth),
-    ]
+        xs = [w.position[0] for w in wheels]
+        d1 = max(w.position[1] for w in wheels if w.kind == "steered")
+        body = _rectangle(min(xs) - 0.5 * r, max(xs) + 0.5 * r, -0.6 * d1, 0.6 * d1)
     kwargs.setdefault("steered_names", ("LF", "RF", "LB", "RB"))
-    return _finish(name, mass, inertia, body, wheels, **kwargs)
+    return _finish(name, mass, inertia, body, wheels, (1.0 / 6.0,) * 6, **kwargs)
 
 
-def ideal_commands(spec: VehicleSpec, twist, steering=None) -> tuple[np.ndarray, np.ndarray]:
-    """Wheel rates (and steering) of the ideal kinematic model for a body twist.
+def ideal_commands(spec: VehicleSpec, twist: npt.ArrayLike,
+                   steering: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
+    r"""Wheel rates (and steering) of the ideal kinematic model for a body twist.
 
-    For each driven wheel at contact point p, the contact velocity of the twist
-    (vx, vy, w) is v_c = (vx - w p_y, vy + w p_x). A steered wheel is turned to roll along v_c
-    (delta folded into (-pi/2, pi/2], the rate negated when the fold reverses it) and spins at
-    phi = |v_c| / r_w; a fixed wheel spins at phi = (e . v_c) / r_w; a mecanum wheel at
-    phi = (u . v_c) / (r_w (u . e)). Velocity components a wheel cannot follow (a fixed wheel's
-    lateral one, e.g. a skid steer turning) are left to friction: the vehicle slips.
+    The rates and angles of :func:`wheelkin.unified.steer_for_twist` and
+    :func:`wheelkin.unified.wheel_rates`: for each wheel at contact point p, the contact
+    velocity of the twist :math:`(v_x, v_y, \omega)` is
+    :math:`v_c = (v_x - \omega p_y,\ v_y + \omega p_x)`. A steered wheel is turned to roll
+    along :math:`v_c` (:math:`\delta` folded into :math:`(-\pi/2, \pi/2]`, the rate negated
+    when the fold reverses it) and spins at :math:`|v_c| / r_w`; a fixed wheel spins at
+    :math:`(\mathbf e\cdot v_c) / r_w`; a Swedish wheel at
+    :math:`(\mathbf u\cdot v_c) / (r_w\,\mathbf u\cdot\mathbf e)`. Velocity components a
+    wheel cannot follow (a fixed wheel's lateral one, e.g. a skid steer turning) are left to
+    friction: the vehicle slips.
 
     Parameters
     ----------
@@ -580,43 +552,46 @@ def ideal_commands(spec: VehicleSpec, twist, steering=None) -> tuple[np.ndarray,
     >>> rates.round(6).tolist()  # L = (v - w W/2)/r, R = (v + w W/2)/r
     [7.5, 12.5]
     """
+    if not isinstance(spec, VehicleSpec):
+        raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
     vx, vy, w = (float(x) for x in V.shaped("twist", twist, (3,)).reshape(3))
     k = len(spec.steered_names)
     if steering is None:
-        current = (0.0,) * k
+        current: tuple[float, ...] = (0.0,) * k
     else:
         current = tuple(V.shaped("steering", steering, (k,)).reshape(k).tolist())
-    rates, angles, _ = _ideal(command_table(spec), vx, vy, w, current)
+    rates, angles, _ = ideal_rates(command_table(spec), vx, vy, w, current)
     return np.array(rates), np.array(angles)
 
 
-def command_table(spec: VehicleSpec) -> tuple:
-    """Per driven wheel, what :func:`ideal_commands` needs (plain floats, computed once)."""
+def command_table(spec: VehicleSpec) -> tuple[tuple, ...]:
+    """Per wheel of ``spec.wheel_names``, what :func:`ideal_rates` needs, as plain floats
+    computed once: (kind, x, y, heading, e_x, e_y, u_x, u_y, r_w, steering slot or -1)."""
+    if not isinstance(spec, VehicleSpec):
+        raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
     where = {name: i for i, name in enumerate(spec.steered_names)}
     table = []
     for wheel in spec.driven_wheels:
-        px, py = wheel.position
-        h = wheel.heading
-        ex, ey = math.cos(h), math.sin(h)
+        ex, ey = (float(c) for c in wheel.rolling_direction)
         ux = uy = 0.0
-        if wheel.kind == "mecanum":
-            a = h + math.pi / 2 + wheel.roller_angle
-            ux, uy = math.cos(a), math.sin(a)
-        table.append((wheel.kind, px, py, h, ex, ey, ux, uy, wheel.radius,
-                      where.get(wheel.name, -1)))
+        if wheel.kind == "swedish":
+            ux, uy = (float(c) for c in wheel.roller_axis)
+        table.append((wheel.kind, *wheel.position, wheel.heading, ex, ey, ux, uy,
+                      wheel.radius, where.get(wheel.name, -1)))
     return tuple(table)
 
 
-def _ideal(table: tuple, vx: float, vy: float, w: float, current: tuple
-           ) -> tuple[list, tuple, bool]:
-    """:func:`ideal_commands` on plain floats (no validation), and whether the wheels can all
-    roll at that twist (no fixed wheel's contact moves sideways)."""
+def ideal_rates(table: tuple[tuple, ...], vx: float, vy: float, w: float,
+                current: tuple[float, ...]) -> tuple[list[float], tuple[float, ...], bool]:
+    """The inner loop of :func:`ideal_commands` on a :func:`command_table`, plain floats, no
+    validation: rates, steering, and whether the wheels can all roll at that twist (no
+    fixed wheel's contact moves sideways)."""
     rates = []
     angles = list(current)
     rolls = True
     for kind, px, py, h, ex, ey, ux, uy, r, slot in table:
         cx, cy = vx - w * py, vy + w * px
-        if kind == "steered" or kind == "free":
+        if kind == "steered":
             speed = math.hypot(cx, cy)
             if speed < 1e-12:
                 sign, speed = 1.0, 0.0
@@ -627,7 +602,7 @@ def _ideal(table: tuple, vx: float, vy: float, w: float, current: tuple
             rates.append((ex * cx + ey * cy) / r)
             if abs(ex * cy - ey * cx) > 1e-12:
                 rolls = False
-        else:  # mecanum
+        else:  # swedish
             rates.append((ux * cx + uy * cy) / (r * (ux * ex + uy * ey)))
     return rates, tuple(angles), rolls
 
@@ -654,9 +629,6 @@ LAB_ROBOT = skid_steer(
 #: A generic 30 cm mecanum platform: r = 0.05 m, half wheelbase and half track 0.15 m, 4 kg.
 MECANUM_ROBOT = mecanum(0.05, 0.15, 0.15, name="mecanum robot")
 
-#: The JPL Open Source Rover: d1 = 7.254 in, d2 = d3 = 10.5 in, d4 = 10.073 in; r = 0.06 m
-#: and 11 kg are our estimates.
-OPEN_SOURCE_ROVER = rover(
-    7.254 * 0.0254, 10.5 * 0.0254, 10.5 * 0.0254, 10.073 * 0.0254, 0.06,
-    mass=11.0, name="Open Source Rover",
-)
+#: The JPL Open Source Rover: :data:`wheelkin.rover.OSR_GEOMETRY` (d1 = 7.254 in,
+#: d2 = d3 = 10.5 in, d4 = 10.073 in); r = 0.06 m and 11 kg are our estimates.
+OPEN_SOURCE_ROVER = rover(rover_model.OSR_GEOMETRY, 0.06, mass=11.0, name="Open Source Rover")

@@ -44,16 +44,78 @@ from dataclasses import dataclass
 
 import numpy as np
 import pymunk
+from numpy.typing import ArrayLike
 
 from wheelkin import _validate as V
 
 from .contact import ContactModel, _Base, _Warm
 from .sensors import Encoder
-from .vehicles import VehicleSpec, _ideal, command_table, ideal_commands
+from .vehicles import VehicleSpec, command_table, ideal_commands, ideal_rates
 
 __all__ = ["Robot", "Trajectory", "World"]
 
 _ROBOT, _WALL = 1, 2
+
+#: The ranges the sandbox accepts (outside them a float would overflow or lose the step):
+#: the step dt, s; a coordinate of a pose or a wall, m; a body speed, m/s; a yaw rate, rad/s;
+#: a wheel rate, rad/s; the steps of one run; a wall's thickness, m; a friction coefficient.
+DT_RANGE = (1e-6, 1.0)
+MAX_COORDINATE = 1e6
+MAX_SPEED = 1e3
+MAX_YAW_RATE = 1e3
+MAX_WHEEL_RATE = 1e5
+MAX_STEPS = 10**8
+MAX_WALL_THICKNESS = 100.0
+MAX_FRICTION = 10.0
+#: A vehicle the contact solver can step: its mass, kg, and radius of gyration sqrt(I / m), m
+#: (outside, the solve overflows or its matrices turn singular); its mu is at most MAX_FRICTION.
+MASS_RANGE = (1e-6, 1e6)
+GYRATION_RANGE = (1e-3, 1e2)
+
+
+def _steppable(spec: VehicleSpec) -> None:
+    """``ValueError`` naming the field unless the contact solver can step ``spec``."""
+    if not 0.0 < spec.mu <= MAX_FRICTION:
+        raise ValueError(f"spec.mu must be in (0, {MAX_FRICTION:g}], got {spec.mu!r}")
+    if not MASS_RANGE[0] <= spec.mass <= MASS_RANGE[1]:
+        raise ValueError(f"spec.mass must be in [{MASS_RANGE[0]:g}, {MASS_RANGE[1]:g}] kg, "
+                         f"got {spec.mass!r}")
+    gyration = math.sqrt(spec.inertia / spec.mass)
+    if not GYRATION_RANGE[0] <= gyration <= GYRATION_RANGE[1]:
+        raise ValueError(f"spec.inertia must give a radius of gyration sqrt(inertia / mass) in "
+                         f"[{GYRATION_RANGE[0]:g}, {GYRATION_RANGE[1]:g}] m, got {gyration:g} m")
+
+
+def _integer(name: str, value, low: int) -> int:
+    """``value`` as an int; ``ValueError`` unless it is an integer (not a bool) >= ``low``."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
+        raise ValueError(f"{name} must be an integer >= {low}, got {value!r}")
+    return int(value)
+
+
+def _pose(value) -> tuple[float, float, float]:
+    p = V.shaped("pose", value, (3,))
+    if p.ndim != 1:
+        raise ValueError(f"pose must be one pose (x, y, theta), got shape {p.shape}")
+    x, y, theta = (float(v) for v in p)
+    if abs(x) > MAX_COORDINATE or abs(y) > MAX_COORDINATE:
+        raise ValueError(f"pose must be within |x|, |y| <= {MAX_COORDINATE:g} m, got {value!r}")
+    return x, y, theta
+
+
+def _twist(names: tuple, values) -> tuple[float, float, float]:
+    """(vx, vy, omega) as floats; ``ValueError`` naming the component unless finite and
+    within the speed and yaw-rate ranges."""
+    u, v, w = (V.finite(n, x) for n, x in zip(names, values, strict=True))
+    for n, x, limit, unit in zip(names, (u, v, w), (MAX_SPEED, MAX_SPEED, MAX_YAW_RATE),
+                                 ("m/s", "m/s", "rad/s"), strict=True):
+        if abs(x) > limit:
+            raise ValueError(f"{n} must be within [-{limit:g}, {limit:g}] {unit}, got {x!r}")
+    return u, v, w
+
+
+def _wheel_rate(name: str, value) -> float:
+    return V.in_range(name, value, -MAX_WHEEL_RATE, MAX_WHEEL_RATE)
 
 try:  # pymunk's C setters, without its Python property layers (called four times a step)
     from pymunk._chipmunk_cffi import lib as _lib
@@ -96,6 +158,9 @@ class Trajectory:
     contact : (N,) bool, touching a wall or another vehicle.
     distance : (N,) path length travelled by the reference point, m.
     wheel_names, steered_names : names of the columns.
+
+    A record is checked when made: N >= 1 instants, every array of its shape, finite, the
+    flags booleans, the counts integers (or, for an ideal encoder, finite angles).
     """
 
     t: np.ndarray
@@ -113,6 +178,36 @@ class Trajectory:
     wheel_names: tuple
     steered_names: tuple
 
+    def __post_init__(self) -> None:
+        for field in ("wheel_names", "steered_names"):
+            names = getattr(self, field)
+            if not isinstance(names, tuple) or not all(isinstance(s, str) for s in names):
+                raise ValueError(f"{field} must be a tuple of str, got {names!r}")
+        t = V.finite_array("t", self.t)
+        if t.ndim != 1 or len(t) < 1:
+            raise ValueError(f"t must have shape (N,), N >= 1, got shape {t.shape}")
+        n, k, count = len(self.wheel_names), len(self.steered_names), len(t)
+        shapes = {"pose": (count, 3), "twist": (count, 3), "wheel_angles": (count, n),
+                  "encoder_counts": (count, n), "slipping": (count, n),
+                  "slip_speed": (count, n), "commanded_rates": (count, n),
+                  "wheel_rates": (count, n), "steering": (count, k), "contact": (count,),
+                  "distance": (count,)}
+        object.__setattr__(self, "t", t)
+        for field, shape in shapes.items():
+            value = getattr(self, field)
+            if field in ("slipping", "contact"):
+                arr = np.asarray(value)
+                if arr.dtype != bool:
+                    raise ValueError(f"{field} must be an array of booleans, got {value!r}")
+            elif field == "encoder_counts" and np.asarray(value).dtype.kind in "iu":
+                arr = np.asarray(value)  # quantised counts; an ideal encoder's are angles
+            else:
+                arr = V.finite_array(field, value)
+            if arr.shape != shape:
+                raise ValueError(f"{field} must have shape {shape} (N = len(t), wheel_names, "
+                                 f"steered_names), got shape {arr.shape}")
+            object.__setattr__(self, field, arr)
+
     def __len__(self) -> int:
         return len(self.t)
 
@@ -120,16 +215,21 @@ class Trajectory:
 class Robot:
     """A vehicle in a :class:`World` (create it with :meth:`World.add`)."""
 
-    def __init__(self, world: World, spec: VehicleSpec, pose, twist) -> None:
+    def __init__(self, world: World, spec: VehicleSpec, pose: ArrayLike, twist: ArrayLike) -> None:
+        if not isinstance(world, World):
+            raise ValueError(f"world must be a World, got {type(world).__name__}")
         if not isinstance(spec, VehicleSpec):
             raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
-        p = V.shaped("pose", pose, (3,)).reshape(3)
-        tw = V.shaped("twist", twist, (3,)).reshape(3)
+        _steppable(spec)
+        self._x, self._y, self._theta = _pose(pose)
+        tw = V.shaped("twist", twist, (3,))
+        if tw.ndim != 1:
+            raise ValueError(f"twist must be one twist (vx, vy, omega), got shape {tw.shape}")
+        tw = _twist(("twist[0] (vx)", "twist[1] (vy)", "twist[2] (omega)"), tw)
         self.world = world
         self.spec = spec
         self._dt = world.dt
         self._n = len(spec.wheel_names)
-        self._x, self._y, self._theta = (float(v) for v in p)
         self._u, self._v, self._w = (float(v) for v in tw)
         self._steer = (0.0,) * len(spec.steered_names)
         self._table = command_table(spec)
@@ -146,9 +246,9 @@ class Robot:
         self._model = ContactModel(spec, self._steer, self._dt, _Base(spec, self._dt))
         self._warm = _Warm()
         tau = spec.motor_time_constant
-        if tau > 0:
+        if tau > 0:  # expm1: the mean stays exact for a lag much longer than a step
             decay = math.exp(-self._dt / tau)
-            self._lag = (decay, tau * (1.0 - decay) / self._dt)
+            self._lag = (decay, -tau * math.expm1(-self._dt / tau) / self._dt)
         else:
             self._lag = None
         self.encoder = Encoder(self._n, spec.steps_per_rev, spec.encoder_noise, spec.seed)
@@ -167,20 +267,24 @@ class Robot:
         self._handle = body._body if _C_SETTERS else _Owner(body)
 
     # ------------------------------------------------------------------ commands
-    def set_wheel_rates(self, rates) -> None:
-        """Command the driven wheels' rates, rad/s, in ``spec.wheel_names`` order."""
+    def set_wheel_rates(self, rates: ArrayLike) -> None:
+        """Command the driven wheels' rates, rad/s (each at most 1e5 in size), in
+        ``spec.wheel_names`` order."""
         r = V.shaped("rates", rates, (self._n,))
         if r.ndim != 1:
             raise ValueError(f"rates must have shape ({self._n},), got shape {r.shape}")
+        if np.any(np.abs(r) > MAX_WHEEL_RATE):
+            raise ValueError(f"rates must be within [-{MAX_WHEEL_RATE:g}, {MAX_WHEEL_RATE:g}] "
+                             f"rad/s, got {r.tolist()}")
         self._cmd = r.tolist()
 
     def set_side_rates(self, left: float, right: float) -> None:
         """Skid steer: drive the left wheels (FL, RL) at ``left``, the right (FR, RR) at
         ``right``, rad/s. Works for any vehicle, by the sign of each wheel's y position."""
-        lv, rv = V.finite("left", left), V.finite("right", right)
+        lv, rv = _wheel_rate("left", left), _wheel_rate("right", right)
         self._cmd = [lv if w.position[1] > 0 else rv for w in self.spec.driven_wheels]
 
-    def set_steering(self, angles) -> None:
+    def set_steering(self, angles: ArrayLike) -> None:
         """Steer the steered wheels, rad, ``spec.steered_names`` order (+ = counter-clockwise)."""
         k = len(self.spec.steered_names)
         a = V.shaped("angles", angles, (k,))
@@ -202,16 +306,18 @@ class Robot:
         See :func:`~wheelkin.sandbox.vehicles.ideal_commands`: what the wheels cannot follow
         (a skid steer's or a differential drive's sideways velocity) is left to friction.
         """
-        try:
+        given = (vx, vy, omega)
+        try:  # plain floats first: a controller calls this every step
             valid = not isinstance(vx, bool) and not isinstance(vy, bool) \
                 and not isinstance(omega, bool)
             vx, vy, omega = float(vx), float(vy), float(omega)
-            valid = valid and math.isfinite(vx + vy + omega)
+            valid = valid and abs(vx) <= MAX_SPEED and abs(vy) <= MAX_SPEED \
+                and abs(omega) <= MAX_YAW_RATE  # False for NaN too
         except (TypeError, ValueError):
             valid = False
         if not valid:
-            V.finite("vx", vx), V.finite("vy", vy), V.finite("omega", omega)  # raise, naming it
-        rates, steer, rolls = _ideal(self._table, vx, vy, omega, self._steer)
+            _twist(("vx", "vy", "omega"), given)  # raises, naming the parameter
+        rates, steer, rolls = ideal_rates(self._table, vx, vy, omega, self._steer)
         self._steer_to(steer)
         self._cmd = rates
         # The ideal rates of a twist all the wheels can roll at need no consistency check.
@@ -364,10 +470,16 @@ class _Owner:  # pragma: no cover - only with a pymunk lacking the C setters
 
 def _segments(walls) -> list[tuple[tuple[float, float], tuple[float, float]]]:
     out = []
+    if isinstance(walls, str | bytes) or not isinstance(walls, Sequence | np.ndarray):
+        raise ValueError(f"walls must be a sequence of segments ((x0, y0), (x1, y1)), "
+                        f"got {walls!r}")
     for i, wall in enumerate(walls):
         arr = V.finite_array(f"walls[{i}]", wall)
         if arr.shape != (2, 2):
             raise ValueError(f"walls[{i}] must be a segment ((x0, y0), (x1, y1)), got {wall!r}")
+        if np.any(np.abs(arr) > MAX_COORDINATE):
+            raise ValueError(f"walls[{i}] must be within |x|, |y| <= {MAX_COORDINATE:g} m, "
+                             f"got {wall!r}")
         out.append(((float(arr[0, 0]), float(arr[0, 1])), (float(arr[1, 0]), float(arr[1, 1]))))
     return out
 
@@ -378,13 +490,18 @@ class World:
     Parameters
     ----------
     dt : float
-        Fixed step, s (> 0; default 1/240).
+        Fixed step, s (in [1e-6, 1]; default 1/240).
     walls : sequence of ((x0, y0), (x1, y1))
-        Static wall segments, m.
+        Static wall segments, m (coordinates within +-1e6 m).
     wall_thickness : float
-        Full thickness of the walls, m (>= 0).
+        Full thickness of the walls, m (in [0, 100]).
     wall_friction : float
-        Friction coefficient between vehicle bodies and walls (>= 0).
+        Friction coefficient between vehicle bodies and walls (in [0, 10]).
+
+    A robot is placed within +-1e6 m and commanded within 1e3 m/s and 1e3 rad/s (its body) or
+    1e5 rad/s (its wheels), and one run lasts at most 1e8 steps; its vehicle has mu <= 10, a
+    mass in [1e-6, 1e6] kg and a radius of gyration in [1e-3, 100] m. Beyond these ranges the
+    arithmetic overflows or loses the step (``ValueError``, naming the parameter).
 
     Examples
     --------
@@ -397,14 +514,15 @@ class World:
     >>> World(dt=0)
     Traceback (most recent call last):
     ...
-    ValueError: dt must be a finite number > 0, got 0
+    ValueError: dt must be in [1e-06, 1], got 0
     """
 
     def __init__(self, dt: float = 1 / 240, walls: Sequence = (), *, wall_thickness: float = 0.01,
                  wall_friction: float = 0.3) -> None:
-        self.dt = V.positive("dt", dt)
-        self.wall_thickness = V.nonnegative("wall_thickness", wall_thickness)
-        self.wall_friction = V.nonnegative("wall_friction", wall_friction)
+        self.dt = V.in_range("dt", dt, *DT_RANGE)
+        self.wall_thickness = V.in_range("wall_thickness", wall_thickness, 0.0,
+                                         MAX_WALL_THICKNESS)
+        self.wall_friction = V.in_range("wall_friction", wall_friction, 0.0, MAX_FRICTION)
         self.walls = tuple(_segments(walls))
         self.space = pymunk.Space()
         self.space.gravity = (0.0, 0.0)
@@ -441,7 +559,8 @@ class World:
     def _separate(self, arbiter, space, data) -> None:
         self._touch(arbiter, -1)
 
-    def add(self, spec: VehicleSpec, pose=(0.0, 0.0, 0.0), twist=(0.0, 0.0, 0.0)) -> Robot:
+    def add(self, spec: VehicleSpec, pose: ArrayLike = (0.0, 0.0, 0.0),
+            twist: ArrayLike = (0.0, 0.0, 0.0)) -> Robot:
         """Put a vehicle in the world at ``pose`` (x, y, theta) moving with body ``twist``.
 
         The wheels start at the ideal rates (and steering) of ``twist``, so that the vehicle
@@ -455,10 +574,9 @@ class World:
 
     def step(self, n: int = 1) -> None:
         """Advance ``n`` steps of ``dt``, holding every command."""
-        if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
-            raise ValueError(f"n must be an integer >= 0, got {n!r}")
+        n = _integer("n", n, 0)
         advance = self._advance
-        for _ in range(int(n)):
+        for _ in range(n):
             advance()
 
     def _advance(self) -> None:
@@ -482,7 +600,7 @@ class World:
         Parameters
         ----------
         duration : float
-            s (>= 0), rounded to a whole number of steps.
+            s (>= 0, at most 1e8 steps), rounded to a whole number of steps.
         controller : callable (t, world) -> None, optional
             Called before each step to set the robots' commands; ``t`` is the time at the
             *middle* of that step (``world.time + dt/2``), so a command that is a smooth
@@ -495,15 +613,14 @@ class World:
         -------
         Trajectory, or a list of them (one per robot, in the order added) if there are several.
         """
-        duration = V.nonnegative("duration", duration)
+        longest = MAX_STEPS * self.dt
+        duration = V.in_range("duration", duration, 0.0, longest)
         if controller is not None and not callable(controller):
             raise ValueError(f"controller must be callable (t, world) -> None, got {controller!r}")
-        if isinstance(record_every, bool) or not isinstance(record_every, int | np.integer) \
-                or record_every < 1:
-            raise ValueError(f"record_every must be an integer >= 1, got {record_every!r}")
+        record_every = _integer("record_every", record_every, 1)
         if not self.robots:
             raise ValueError("the world has no robots: add one with world.add(spec)")
-        steps = math.ceil(duration / self.dt - 1e-9)
+        steps = max(0, math.ceil(duration / self.dt - 1e-9))
         logs = [[] for _ in self.robots]
         stamps = []
         pairs = list(zip(self.robots, logs, strict=True))

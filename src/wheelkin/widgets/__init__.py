@@ -21,8 +21,12 @@ import time
 from collections.abc import Callable, Mapping
 from typing import Any
 
-import ipywidgets as widgets
-import matplotlib.pyplot as plt
+try:
+    import ipywidgets as widgets
+    import matplotlib.pyplot as plt
+except ModuleNotFoundError as exc:
+    raise ModuleNotFoundError("wheelkin.widgets needs ipywidgets and matplotlib: install the "
+                              "extra, pip install \".[notebook]\" from a checkout") from exc
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure

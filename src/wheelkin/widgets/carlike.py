@@ -27,6 +27,7 @@ from matplotlib.patches import Polygon
 
 from wheelkin import carlike, rover, units
 from wheelkin.sandbox.car import RC_CAR_MAX_STEERING, Steering, front_angles
+from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 
 __all__ = ["PursuitView", "SteeringView", "pursuit_animation", "pursuit_panel",
@@ -58,7 +59,7 @@ class SteeringView:
         middle wheels fixed), in metres.
     """
 
-    def __init__(self, fig, vehicle: str = "car") -> None:
+    def __init__(self, fig: Figure, vehicle: str = "car") -> None:
         self.vehicle = vehicle
         if vehicle == "car":
             self.positions = {"FL": (CAR_L, CAR_W / 2), "FR": (CAR_L, -CAR_W / 2),
@@ -128,7 +129,7 @@ class SteeringView:
         return {n: math.atan(self.positions[n][0] / (radius - self.positions[n][1]))
                 for n in self.steered}
 
-    def update(self, delta_deg: float, geometry: str = "ackermann"):
+    def update(self, delta_deg: float, geometry: str = "ackermann") -> None:
         delta = math.radians(delta_deg)
         angles = self.angles(delta, geometry)
         for name, (x, y) in self.positions.items():
@@ -168,7 +169,7 @@ class SteeringView:
 
 def _steering_setup(vehicle):
     def setup():
-        fig = Figure(figsize=(6.7, 3.9), dpi=100, layout="none")
+        fig = Figure(figsize=(6.7, 3.9), dpi=100, layout=fixed_layout())
         return fig, SteeringView(fig, vehicle)
     return setup
 
@@ -203,7 +204,7 @@ register("carlike.rover")(rover_panel)
 def steering_animation(geometry: str = "ackermann", frames: int = 36,
                        vehicle: str = "car") -> FuncAnimation:
     """The steering swept from one limit to the other and back (kernel-free twin)."""
-    fig = Figure(figsize=(6.7, 3.9), dpi=100, layout="none")
+    fig = Figure(figsize=(6.7, 3.9), dpi=100, layout=fixed_layout())
     view = SteeringView(fig, vehicle)
     top = math.degrees(RC_CAR_MAX_STEERING) if vehicle == "car" else 45.0
     values = top * np.sin(np.linspace(0.0, 2 * math.pi, frames, endpoint=False) + 0.3)
@@ -223,7 +224,7 @@ def rover_animation(frames: int = 36) -> FuncAnimation:
 class PursuitView:
     """The car at the origin, a look-ahead point, and the arc pure pursuit steers along."""
 
-    def __init__(self, fig) -> None:
+    def __init__(self, fig: Figure) -> None:
         ax = self.ax = fig.add_subplot(1, 1, 1)
         fig.subplots_adjust(left=0.12, right=0.97, bottom=0.13, top=0.9)
         ax.set_xlim(-0.3, 1.6)
@@ -248,7 +249,7 @@ class PursuitView:
                             bbox={"fc": "white", "ec": "none", "alpha": 0.85, "pad": 1})
         self.title = ax.set_title("", fontsize=10)
 
-    def update(self, lookahead: float, bearing_deg: float):
+    def update(self, lookahead: float, bearing_deg: float) -> None:
         b = math.radians(bearing_deg)
         gx, gy = lookahead * math.cos(b), lookahead * math.sin(b)
         kappa = carlike.pure_pursuit_curvature(gx, gy)
@@ -282,7 +283,7 @@ def pursuit_panel() -> Panel:
     }
 
     def setup():
-        fig = Figure(figsize=(6.7, 4.2), dpi=100, layout="none")
+        fig = Figure(figsize=(6.7, 4.2), dpi=100, layout=fixed_layout())
         return fig, PursuitView(fig)
 
     return Panel(controls, setup, lambda view, lookahead, bearing_deg:
@@ -294,7 +295,7 @@ register("carlike.pure_pursuit")(pursuit_panel)
 
 def pursuit_animation(frames: int = 36) -> FuncAnimation:
     """The look-ahead point swept across the bearing at two distances (kernel-free twin)."""
-    fig = Figure(figsize=(6.7, 4.2), dpi=100, layout="none")
+    fig = Figure(figsize=(6.7, 4.2), dpi=100, layout=fixed_layout())
     view = PursuitView(fig)
     half = frames // 2
     bearings = np.concatenate([np.linspace(-50, 50, half), np.linspace(50, -50, frames - half)])

@@ -1,7 +1,7 @@
-"""Chapter 1's live panel and its kernel-free twin (notebooks/01_conventions).
+r"""Chapter 1's live panel and its kernel-free twin (notebooks/01_conventions).
 
 :class:`TwistView` draws a rectangular body in our world frame (x east to the right of the
-page, y north up, metres) driven by a constant twist :math:`(v_x, v_y, \\omega)`: the path of
+page, y north up, metres) driven by a constant twist :math:`(v_x, v_y, \omega)`: the path of
 its reference point, ghost outlines along it, the instantaneous centre of rotation (ICR), the
 velocity of each corner (perpendicular to the line from the ICR) and the same twist in the
 mecanum simulator's and the rover document's units. ``update(vx, vy, omega)`` moves the
@@ -12,15 +12,20 @@ artists in place; the panel ``conventions.twist_icr`` drives it with three slide
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrowPatch, Polygon
+from numpy.typing import ArrayLike
 
 from wheelkin import frames
+from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 
 __all__ = ["TwistView", "angle_arc", "arrow", "body_axes", "draw_vehicle", "turn_arrow",
@@ -50,7 +55,7 @@ class TwistView:
         Number of outlines drawn along the path ahead.
     """
 
-    def __init__(self, ax, start: frames.Pose | None = None, ghosts: int = 3) -> None:
+    def __init__(self, ax: Axes, start: frames.Pose | None = None, ghosts: int = 3) -> None:
         self.ax = ax
         self.start = start or frames.Pose(0.0, 0.0, 0.0)
         ax.set_xlim(-LIMIT, LIMIT)
@@ -177,7 +182,7 @@ def _text_beside(view: TwistView, fig) -> None:
 
 
 def _figure(figsize=(5.0, 5.0), dpi=100):
-    fig = plt.figure(figsize=figsize, dpi=dpi, layout="none")
+    fig = plt.figure(figsize=figsize, dpi=dpi, layout=fixed_layout())
     fig.subplots_adjust(left=0.13, right=0.97, bottom=0.1, top=0.97)
     return fig
 
@@ -199,7 +204,7 @@ def twist_icr_panel() -> Panel:
     def setup():
         # A Figure outside pyplot: the panel redraws it itself, and pyplot never shows it again
         # under a later cell.
-        fig = Figure(figsize=(6.7, 4.4), dpi=100, layout="none")
+        fig = Figure(figsize=(6.7, 4.4), dpi=100, layout=fixed_layout())
         view = TwistView(fig.add_subplot(1, 1, 1))
         _text_beside(view, fig)
         return fig, view
@@ -212,7 +217,7 @@ def twist_icr_panel() -> Panel:
 
 
 def twist_animation(twist: frames.Twist | None = None, frames_count: int = 40,
-                    figsize=(6.7, 4.4), dpi=100) -> FuncAnimation:
+                    figsize: tuple[float, float] = (6.7, 4.4), dpi: int = 100) -> FuncAnimation:
     """The body turning once about its ICR under a constant ``twist`` (one full turn).
 
     The ICR stays fixed in the world while the body turns about it; every corner's velocity
@@ -249,7 +254,9 @@ def twist_animation(twist: frames.Twist | None = None, frames_count: int = 40,
 
 
 # ------------------------------------------------------------------ chapter 1's drawings
-def arrow(ax, start, end, colour, label=None, offset=(0.0, 0.0), lw=1.8, fontsize=11, **kw):
+def arrow(ax: Axes, start: Sequence[float] | np.ndarray, end: Sequence[float] | np.ndarray,
+          colour: str, label: str | None = None, offset: tuple[float, float] = (0.0, 0.0),
+          lw: float = 1.8, fontsize: float = 11, **kw: Any) -> None:
     """An arrow from ``start`` to ``end`` with an optional label at its tip (+ ``offset``)."""
     ax.annotate("", xy=end, xytext=start,
                 arrowprops={"arrowstyle": "-|>", "color": colour, "lw": lw, **kw})
@@ -258,8 +265,11 @@ def arrow(ax, start, end, colour, label=None, offset=(0.0, 0.0), lw=1.8, fontsiz
                 ha="center", va="center")
 
 
-def draw_vehicle(ax, pose, length, width, wheels, wheel_size=(0.22, 0.08), body_colour="#e6e6e6",
-                 labels=True, fontsize=8, label_shift=None):
+def draw_vehicle(ax: Axes, pose: frames.Pose | ArrayLike, length: float, width: float,
+                 wheels: Mapping[str, tuple[float, float]],
+                 wheel_size: tuple[float, float] = (0.22, 0.08), body_colour: str = "#e6e6e6",
+                 labels: bool = True, fontsize: float = 8,
+                 label_shift: Mapping[str, tuple[float, float]] | None = None) -> None:
     """A rectangle with wheels; ``wheels`` maps a label to a body-frame position (x fwd, y left)."""
     corners = np.array([[length / 2, width / 2], [length / 2, -width / 2],
                         [-length / 2, -width / 2], [-length / 2, width / 2]])
@@ -279,8 +289,10 @@ def draw_vehicle(ax, pose, length, width, wheels, wheel_size=(0.22, 0.08), body_
             ax.text(lx, ly, name, fontsize=fontsize, ha="center", va="center", zorder=4)
 
 
-def body_axes(ax, pose, size, names=("$x$", "$y$"), colours=("#d62728", "#2ca02c"), lw=1.8,
-              directions=((1.0, 0.0), (0.0, 1.0)), label_gap=1.25, **kw):
+def body_axes(ax: Axes, pose: frames.Pose, size: float, names: Sequence[str] = ("$x$", "$y$"),
+              colours: Sequence[str] = ("#d62728", "#2ca02c"), lw: float = 1.8,
+              directions: Sequence[tuple[float, float]] = ((1.0, 0.0), (0.0, 1.0)),
+              label_gap: float = 1.25, **kw: Any) -> None:
     """A body frame's two axes at ``pose``, ``size`` long, labelled beyond their tips."""
     origin = np.array([pose.x, pose.y])
     for name, colour, d in zip(names, colours, directions, strict=True):
@@ -290,7 +302,9 @@ def body_axes(ax, pose, size, names=("$x$", "$y$"), colours=("#d62728", "#2ca02c
         ax.text(tip[0], tip[1], name, color=colour, ha="center", va="center", fontsize=11)
 
 
-def angle_arc(ax, centre, radius, start, end, colour, label, label_radius=None, lw=1.2):
+def angle_arc(ax: Axes, centre: Sequence[float] | np.ndarray, radius: float, start: float,
+              end: float, colour: str, label: str, label_radius: float | None = None,
+              lw: float = 1.2) -> None:
     """An arrowed arc from angle ``start`` to ``end`` (rad) about ``centre``, labelled."""
     t = np.linspace(start, end, 40)
     ax.plot(centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t), color=colour, lw=lw)
@@ -303,7 +317,8 @@ def angle_arc(ax, centre, radius, start, end, colour, label, label_radius=None, 
             ha="center", va="center", fontsize=11)
 
 
-def turn_arrow(ax, centre, radius, start, end, colour, label, label_pos):
+def turn_arrow(ax: Axes, centre: Sequence[float] | np.ndarray, radius: float, start: float,
+               end: float, colour: str, label: str, label_pos: tuple[float, float]) -> None:
     """A curved arrow showing a sense of rotation, labelled at ``label_pos``."""
     a = (centre[0] + radius * np.cos(start), centre[1] + radius * np.sin(start))
     b = (centre[0] + radius * np.cos(end), centre[1] + radius * np.sin(end))

@@ -22,12 +22,13 @@ from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrow, Rectangle
 
 from wheelkin import diffdrive as dd
+from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 
 __all__ = ["DiffDriveView", "SpeedometerView", "speedometer_panel", "sweep_animation",
            "wheel_speeds_panel"]
 
-W_MM = dd.RADON_ULZER_CONSTANTS.wheel_base_mm
+W_MM = dd.RADON_ULZER_CONSTANTS.track_width_mm
 ENC = dd.RADON_ULZER_CONSTANTS.steps_per_m
 ARROW_MM_PER_STEP_PER_S = 0.04     # arrow length per wheel speed (mm per step/s)
 _LEFT_COLOUR, _RIGHT_COLOUR = "#1f77b4", "#d62728"
@@ -47,14 +48,16 @@ class DiffDriveView:
     ----------
     fig : matplotlib.figure.Figure
         An empty figure; two axes are added.
-    wheel_base_mm, steps_per_m : int
+    track_width_mm, steps_per_m : int
         The firmware's constants (default: the Radon Ulzer's 85 mm and 8043 steps/m).
     """
 
-    def __init__(self, fig, wheel_base_mm: int = W_MM, steps_per_m: int = ENC) -> None:
-        self.base = wheel_base_mm
+    def __init__(self, fig: Figure, track_width_mm: int = W_MM, steps_per_m: int = ENC) -> None:
+        self.base = track_width_mm
         self.enc = steps_per_m
         self.fig = fig
+        # The layout is set by hand below: pin it (see wheelkin.style.fixed_layout).
+        fig.set_layout_engine(fixed_layout())
         gs = fig.add_gridspec(1, 2, width_ratios=(1.0, 1.2), wspace=0.3, left=0.11,
                               right=0.96, bottom=0.15, top=0.88)
         ax = self.ax = fig.add_subplot(gs[0])
@@ -65,15 +68,16 @@ class DiffDriveView:
         ax.set_xlabel("robot's right (mm)")
         ax.set_ylabel("forward (mm)")
         ax.grid(True, lw=0.3, alpha=0.5)
-        half = wheel_base_mm / 2
+        half = track_width_mm / 2
         ax.add_patch(Rectangle((-half + 6, -45), 2 * half - 12, 90, fc="#dddddd", ec="#555555",
                                lw=1.0, zorder=2))
         for x, colour in ((-half, _LEFT_COLOUR), (half, _RIGHT_COLOUR)):
             ax.add_patch(Rectangle((x - 5, -18), 10, 36, fc=colour, ec="k", lw=0.8, zorder=3))
         ax.plot([-half, half], [0, 0], color="k", lw=0.8, zorder=4)
         ax.plot([0], [0], marker="+", color="k", ms=8, zorder=5)
-        ax.text(-half, -26, "L", ha="center", va="top", fontsize=8)
-        ax.text(half, -26, "R", ha="center", va="top", fontsize=8)
+        # wheel names outside the wheels, clear of the README ticks at the wheel x
+        ax.text(-half - 16, -12, "L", ha="right", va="center", fontsize=8)
+        ax.text(half + 16, -12, "R", ha="left", va="center", fontsize=8)
         self.icr = ax.plot([], [], marker="o", color="k", ms=5, ls="none", zorder=6)[0]
         self.icr_text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=8,
                                 va="bottom")
@@ -88,9 +92,9 @@ class DiffDriveView:
                        self._arrow(half, 0.0, _RIGHT_COLOUR)]
         # Bars: three computations x (left, right).
         y = np.arange(len(_ROWS))
-        self.left_bars = bx.barh(y + 0.18, np.zeros(3), height=0.34, color=_LEFT_COLOUR,
+        self.left_bars = bx.barh(y + 0.15, np.zeros(3), height=0.28, color=_LEFT_COLOUR,
                                  label="left wheel")
-        self.right_bars = bx.barh(y - 0.18, np.zeros(3), height=0.34, color=_RIGHT_COLOUR,
+        self.right_bars = bx.barh(y - 0.15, np.zeros(3), height=0.28, color=_RIGHT_COLOUR,
                                   label="right wheel")
         bx.set_yticks(y, _ROWS, fontsize=8)
         bx.invert_yaxis()
@@ -101,7 +105,9 @@ class DiffDriveView:
         bx.set_ylim(len(_ROWS) - 0.3, -1.3)  # headroom above the first row for the legend
         bx.legend(loc="upper center", ncol=2, fontsize=8,
                   frameon=False)
-        self.bar_text = [bx.text(-2900, i + 0.42, "", fontsize=8, va="center")
+        # under each pair of bars, with a background that hides the zero line behind it
+        self.bar_text = [bx.text(-2900, i + 0.5, "", fontsize=8, va="center", zorder=5,
+                                 bbox={"fc": "white", "ec": "none", "pad": 0.5})
                          for i in range(3)]
         self.title = ax.set_title("", fontsize=9, loc="left")  # spans both panels
         # Everything update() moves, in drawing order: a panel redraws only these over a
@@ -173,7 +179,7 @@ def wheel_speeds_panel() -> Panel:
     """Sliders for v and omega in the firmware's units, driving :class:`DiffDriveView`."""
 
     def setup():
-        fig = Figure(figsize=(6.7, 3.6), dpi=100, layout="none")  # not pyplot's
+        fig = Figure(figsize=(6.7, 3.6), dpi=100, layout=fixed_layout())  # not pyplot's
         return fig, DiffDriveView(fig)
 
     def update(view: DiffDriveView, v_steps_per_s: int, omega_mrad_per_s: int) -> list:
@@ -194,9 +200,10 @@ def wheel_speeds_panel() -> Panel:
 register("diffdrive.wheel_speeds")(wheel_speeds_panel)
 
 
-def sweep_animation(v_steps_per_s: int = 1000, omega_max: int = 4500, frames: int = 40):
+def sweep_animation(v_steps_per_s: int = 1000, omega_max: int = 4500,
+                    frames: int = 40) -> FuncAnimation:
     """Sweep omega from 0 to ``omega_max`` mrad/s at a fixed v (a FuncAnimation)."""
-    fig = Figure(figsize=(6.7, 3.6), dpi=100, layout="none")
+    fig = Figure(figsize=(6.7, 3.6), dpi=100, layout=fixed_layout())
     view = DiffDriveView(fig)
     omegas = np.round(np.linspace(0, omega_max, frames)).astype(int)
 
@@ -210,7 +217,7 @@ def sweep_animation(v_steps_per_s: int = 1000, omega_max: int = 4500, frames: in
 class SpeedometerView:
     """A wheel at constant speed, its encoder counts, and two speedometers' readings."""
 
-    def __init__(self, fig, steps_per_m: int = ENC, duration: float = 0.6,
+    def __init__(self, fig: Figure, steps_per_m: int = ENC, duration: float = 0.6,
                  task_period: float = 0.002) -> None:
         self.enc = steps_per_m
         self.t = np.arange(0.0, duration, task_period)

@@ -14,14 +14,18 @@ Our frame (x forward, y left), SI; wheel order FL, FR, RL, RR.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.artist import Artist
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import frames
 from wheelkin.mecanum import (
@@ -29,6 +33,7 @@ from wheelkin.mecanum import (
     EXAMPLE_GEOMETRY,
     WHEEL_NAMES,
     MecanumGeometry,
+    SpeedLimit,
     circle_twist,
     fighting_component,
     forward_kinematics,
@@ -37,6 +42,7 @@ from wheelkin.mecanum import (
     max_rim_speed,
 )
 from wheelkin.sandbox.render import SandboxAnimation
+from wheelkin.style import fixed_layout
 from wheelkin.units import FOOT
 from wheelkin.widgets import Panel, register
 
@@ -60,7 +66,7 @@ class MecanumDrawing:
     heading arrow), so that a panel redraws quickly.
     """
 
-    def __init__(self, ax, geometry: MecanumGeometry, pose=(0.0, 0.0, 0.0), *,
+    def __init__(self, ax: Axes, geometry: MecanumGeometry, pose: ArrayLike = (0.0, 0.0, 0.0), *,
                  color: str = "C0", alpha: float = 1.0, rollers: bool = True,
                  label_wheels: bool = False, zorder: int = 3) -> None:
         g = geometry
@@ -110,7 +116,7 @@ class MecanumDrawing:
         out = [self._body, self._wheels, self._arrow] + [txt for txt, _ in self.labels]
         return out + ([self._rollers] if self._rollers is not None else [])
 
-    def update(self, pose, slipping=None) -> None:
+    def update(self, pose: ArrayLike, slipping: ArrayLike | None = None) -> None:
         """Move every artist to ``pose`` (x m, y m, theta rad); paint slipping wheels red.
 
         ``slipping``: four booleans (FL, FR, RL, RR), or None to leave the colours alone.
@@ -135,8 +141,8 @@ class MecanumDrawing:
                                           for slip in slipping for _ in range(4)])
 
 
-def draw_mecanum(ax, geometry: MecanumGeometry = EXAMPLE_GEOMETRY, pose=(0.0, 0.0, 0.0),
-                 **kwargs) -> MecanumDrawing:
+def draw_mecanum(ax: Axes, geometry: MecanumGeometry = EXAMPLE_GEOMETRY,
+                 pose: ArrayLike = (0.0, 0.0, 0.0), **kwargs: Any) -> MecanumDrawing:
     """Draw the vehicle top-down at ``pose``; returns a handle with ``.update(pose)``.
 
     Keyword arguments: ``color``, ``alpha``, ``rollers`` (draw the upper rollers),
@@ -145,15 +151,19 @@ def draw_mecanum(ax, geometry: MecanumGeometry = EXAMPLE_GEOMETRY, pose=(0.0, 0.
     return MecanumDrawing(ax, geometry, pose, **kwargs)
 
 
-def predicted_path(twist, duration: float, n: int = 121, start=(0.0, 0.0, 0.0)) -> np.ndarray:
+def predicted_path(twist: ArrayLike, duration: float, n: int = 121,
+                   start: ArrayLike = (0.0, 0.0, 0.0)) -> np.ndarray:
     """Poses (n, 3) reached by holding the body ``twist`` for 0..``duration`` s (exact arcs)."""
     t = np.linspace(0.0, duration, n)
     deltas = frames.se2_exp(np.outer(t, np.asarray(twist, dtype=float)), 1.0)
     return frames.compose(np.asarray(start, dtype=float), deltas)
 
 
-def simulate_go_to_point(start, goal, speed, max_omega, *, geometry=EXAMPLE_GEOMETRY,
-                         max_speed=DOCUMENT_MAX_SPEED, dt=1 / 60, max_time=30.0):
+def simulate_go_to_point(
+        start: ArrayLike, goal: ArrayLike, speed: float, max_omega: float, *,
+        geometry: MecanumGeometry = EXAMPLE_GEOMETRY, max_speed: float = DOCUMENT_MAX_SPEED,
+        dt: float = 1 / 60, max_time: float = 30.0,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], SpeedLimit | None]:
     """Drive from ``start`` to ``goal`` with the sampled go-to-point law, limited each step.
 
     Returns (t (N,), poses (N, 3), twists (N-1, 3), worst): ``worst`` is the
@@ -178,10 +188,12 @@ def simulate_go_to_point(start, goal, speed, max_omega, *, geometry=EXAMPLE_GEOM
     return t, poses_arr, np.array(twists).reshape(-1, 3), worst
 
 
-def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
+def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan: ArrayLike | None = None,
                   plan_label: str = "predicted", path_label: str = "path",
-                  extra_paths=None, frames_count: int = 60, title: str | None = None,
-                  texts=None, limits=None, slipping=None, figsize=(6.7, 4.2),
+                  extra_paths: Mapping[str, ArrayLike] | None = None, frames_count: int = 60,
+                  title: str | None = None, texts: Sequence[str] | None = None,
+                  limits: tuple[tuple[float, float], tuple[float, float]] | None = None,
+                  slipping: ArrayLike | None = None, figsize: tuple[float, float] = (6.7, 4.2),
                   dpi: int = 100) -> SandboxAnimation:
     """A kernel-free animation of the vehicle moving through ``poses`` (N, 3).
 
@@ -196,7 +208,7 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan=None,
     """
     poses = np.asarray(poses, dtype=float)
     idx = np.linspace(0, len(poses) - 1, frames_count).round().astype(int)
-    fig, ax = plt.subplots(figsize=figsize, dpi=dpi, layout="none")
+    fig, ax = plt.subplots(figsize=figsize, dpi=dpi, layout=fixed_layout())
     ax.set_aspect("equal")
     ax.grid(True, lw=0.4, alpha=0.5)
     ax.set_xlabel("x (m)")
@@ -345,7 +357,7 @@ def _floor_axes(bottom: float):
     """The panels' figure: a 10 m x 10 m floor around the start, metres, equal scale, with
     ``bottom`` of the figure left free for the panel's text."""
     fig, ax = plt.subplots(figsize=(4.9, 4.5), dpi=72,  # fits a 1366 x 768 screen
-                           layout="none")
+                           layout=fixed_layout())
     fig.subplots_adjust(bottom=bottom)
     ax.set_aspect("equal")
     ax.grid(True, lw=0.4, alpha=0.5)

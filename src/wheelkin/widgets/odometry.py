@@ -13,11 +13,13 @@ estimate and the Euler estimate, and their end-point errors.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.artist import Artist
+from numpy.typing import NDArray
 
 from wheelkin import odometry as odo
 from wheelkin.widgets import Panel, register
@@ -39,7 +41,8 @@ _VIEWS = {
 }
 
 
-def rounded_square(side_mm=SIDE_MM, corner_radius_mm=CORNER_RADIUS_MM, clockwise=False):
+def rounded_square(side_mm: float = SIDE_MM, corner_radius_mm: float = CORNER_RADIUS_MM,
+                   clockwise: bool = False) -> NDArray[np.float64]:
     """Segments ``(distance_mm, turn_rad)`` of a square with arcs of radius r at the corners.
 
     Starts at the middle of the first side, heading along it; four straight pieces of
@@ -56,9 +59,11 @@ def rounded_square(side_mm=SIDE_MM, corner_radius_mm=CORNER_RADIUS_MM, clockwise
     return np.array(segs)
 
 
-def simulate_square(step_mm=10.0, diameter_error_pct=0.0, base_error_pct=0.0, *,
-                    clockwise=False, corner_radius_mm=CORNER_RADIUS_MM,
-                    methods=("exact", "euler")):
+def simulate_square(
+        step_mm: float = 10.0, diameter_error_pct: float = 0.0, base_error_pct: float = 0.0, *,
+        clockwise: bool = False, corner_radius_mm: float = CORNER_RADIUS_MM,
+        methods: Sequence[str] = ("exact", "euler"),
+) -> tuple[NDArray[np.float64], dict[str, NDArray[np.float64]]]:
     """True path and dead-reckoned estimates of the rounded square.
 
     The true robot has track width W = 85 mm and wheel diameters D_L = D (1 − e/2),

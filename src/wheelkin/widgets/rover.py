@@ -22,6 +22,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon
 
 from wheelkin import rover
+from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 
 __all__ = ["RoverView", "steering_panel", "sweep_animation"]
@@ -53,7 +54,7 @@ class RoverView:
         How the command becomes a radius (see :func:`wheelkin.rover.command_to_radius`).
     """
 
-    def __init__(self, fig, geometry: rover.RoverGeometry = rover.OSR_GEOMETRY,
+    def __init__(self, fig: Figure, geometry: rover.RoverGeometry = rover.OSR_GEOMETRY,
                  mapping: str = "radius") -> None:
         self.geometry = geometry
         self.mapping = mapping
@@ -210,7 +211,7 @@ class RoverView:
 def _figure(figsize=(6.7, 3.5), dpi=100) -> Figure:
     # A figure unknown to pyplot: the inline backend never shows it by itself (a live panel
     # renders it into its own image; an animation into its HTML player).
-    fig = Figure(figsize=figsize, dpi=dpi, layout="none")
+    fig = Figure(figsize=figsize, dpi=dpi, layout=fixed_layout())
     FigureCanvasAgg(fig)
     fig.subplots_adjust(left=0.09, right=0.99, bottom=0.15, top=0.92)
     return fig
@@ -238,7 +239,8 @@ def steering_panel() -> Panel:
 
 
 def sweep_animation(frames: int = 33, speed: float = 100.0, *, mapping: str = "radius",
-                    figsize=(6.7, 3.5), dpi: int = 100, interval: int = 250) -> FuncAnimation:
+                    figsize: tuple[float, float] = (6.7, 3.5), dpi: int = 100,
+                    interval: int = 250) -> FuncAnimation:
     """The steering command swept from -100 to 100 in ``frames`` steps (0 included when
     ``frames`` is odd), as a FuncAnimation for :func:`wheelkin.animation.show`."""
     commands = np.linspace(-100.0, 100.0, frames)

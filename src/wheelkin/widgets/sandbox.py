@@ -1,11 +1,12 @@
 """The sandbox page's live panel (notebooks/02_sandbox): how much grip a turn needs.
 
-Panel ``sandbox.slip``: the Radon Ulzer is commanded at 0.4 m/s and a yaw rate omega (slider)
-on a floor of friction coefficient mu (slider), from rest, with the command ramped in over
-0.3 s. The figure shows the kinematic circle of the command (dashed), the sandbox's path for
-2 s (red where the wheels slip) and the robot at the end. The turn needs a centripetal
-acceleration v omega; the driven wheels can give about 0.8 mu g (the caster carries the
-rest), so the robot holds its circle while v omega < 0.8 mu g and slides off beyond.
+Panel ``sandbox.slip``: the Radon Ulzer, already turning at 0.4 m/s and a yaw rate omega
+(slider), keeps that command on a floor of friction coefficient mu (slider). The figure shows
+the kinematic circle of the command (dashed), the sandbox's path for 2 s (red where the
+wheels slip) and the robot at the end. A steady turn needs a centripetal acceleration
+v omega; the driven wheels can give at most 0.8 mu g (the caster carries the rest), so the
+robot holds its circle while v omega <= 0.8 mu g and slides off beyond. (Starting from rest
+would add the acceleration of the speed-up to the same friction budget.)
 """
 
 from __future__ import annotations
@@ -17,6 +18,8 @@ import ipywidgets as widgets
 import numpy as np
 from matplotlib.figure import Figure
 
+from wheelkin import _validate as V
+from wheelkin import style
 from wheelkin._kernels import arc_step
 from wheelkin.sandbox import RADON_ULZER, World
 from wheelkin.sandbox.render import draw_vehicle
@@ -28,7 +31,6 @@ __all__ = ["SlipView", "slip_panel"]
 
 SPEED = 0.4  # m/s
 DURATION = 2.0  # s
-RAMP = 0.3  # s
 DT = 1 / 80  # a coarser step keeps a redraw within the slider budget
 
 
@@ -36,6 +38,8 @@ class SlipView:
     """The kinematic circle, the sandbox path and the robot; :meth:`update` redraws in place."""
 
     def __init__(self, fig: Figure) -> None:
+        if not isinstance(fig, Figure):
+            raise ValueError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
         self.fig = fig
         ax = self.ax = fig.add_subplot()
         fig.subplots_adjust(left=0.12, right=0.97, bottom=0.13, top=0.88)
@@ -62,9 +66,10 @@ class SlipView:
 
         Returns the artists it changed and what a full draw paints over them there (the
         frame; the legend when a path runs under it), in drawing order, for a blitting
-        panel (the axes' limits are fixed)."""
+        panel (the axes' limits are fixed). A value the model refuses (``mu`` in (0, 10],
+        ``omega`` in [-1000, 1000] rad/s) is not raised but written on the figure."""
         try:
-            run = _run(float(mu), float(omega))
+            run = _run(V.in_range("mu", mu, 0.0, 10.0), V.finite("omega", omega))
         except ValueError as exc:  # a value the model rejects: say so, do not raise
             self.message.set_text(str(exc))
             return self._blit()
@@ -86,25 +91,17 @@ def _run(mu: float, omega: float):
     ``(ideal (N, 2), pose (N, 3), slipping (N, wheels), twist (N, 3), title)``."""
     spec = RADON_ULZER.replace(mu=mu)
     world = World(dt=DT)
-    robot = world.add(spec)
-
-    def ramp(t, _world):
-        s = min(t / RAMP, 1.0)
-        robot.command_twist(SPEED * s, 0.0, omega * s)
-
-    traj = world.run(DURATION, ramp)
-    # Kinematic model of the same (ramped) command, integrated exactly per step.
-    t = traj.t[:-1] + 0.5 * DT
-    s = np.minimum(t / RAMP, 1.0)
-    v, w = SPEED * s, omega * s
-    theta = np.concatenate([[0.0], np.cumsum(w * DT)])
-    dx, dy, _ = arc_step(0.0, 0.0, theta[:-1], v * DT, w * DT)  # each step's arc, world frame
-    ideal = np.column_stack([np.concatenate([[0.0], np.cumsum(dx)]),
-                             np.concatenate([[0.0], np.cumsum(dy)])])
+    robot = world.add(spec, twist=(SPEED, 0.0, omega))  # already turning: a steady turn
+    robot.command_twist(SPEED, 0.0, omega)
+    traj = world.run(DURATION)
+    # Kinematic model of the same constant command: the exact arc from the start.
+    t = traj.t
+    dx, dy, _ = arc_step(0.0, 0.0, 0.0, SPEED * t, omega * t)
+    ideal = np.column_stack([dx, dy])
     need = SPEED * abs(omega)
     grip = 0.8 * spec.mu * GRAVITY
     off = math.dist(traj.pose[-1, :2], ideal[-1])
-    title = (f"needs v·ω = {need:.1f} m/s², wheels grip ≈ {grip:.1f} m/s²; "
+    title = (f"needs v·ω = {need:.2f} m/s², wheels grip ≤ {grip:.2f} m/s²; "
              f"off the model by {off * 100:.1f} cm after {DURATION:g} s")
     arrays = ideal, traj.pose, traj.slipping, traj.twist
     for array in arrays:
@@ -116,7 +113,7 @@ def slip_panel() -> Panel:
     """Sliders for the friction coefficient and the commanded yaw rate."""
 
     def setup():
-        fig = Figure(figsize=(6.0, 4.6), dpi=100, layout="none")
+        fig = Figure(figsize=(6.0, 4.6), dpi=100, layout=style.fixed_layout())
         return fig, SlipView(fig)
 
     def update(view: SlipView, mu: float, omega: float) -> list:

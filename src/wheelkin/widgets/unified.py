@@ -26,6 +26,7 @@ from matplotlib.figure import Figure
 from wheelkin import unified
 from wheelkin.sandbox import LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER, RADON_ULZER
 from wheelkin.sandbox.render import PALETTE, SandboxAnimation, draw_vehicle
+from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 
 __all__ = ["VEHICLES", "ConstraintView", "constraints_panel", "manoeuvre_animation",
@@ -75,34 +76,51 @@ class ConstraintView:
             reach = _reach(spec)
             lim = 1.5 * reach
             ax.set_xlim(-lim, lim)
-            ax.set_ylim(-1.25 * lim, lim)
+            ax.set_ylim(-lim, lim)
             ax.set_aspect("equal")
             ax.set_xticks([])
             ax.set_yticks([])
-            wheels = unified.from_sandbox(spec)
+            wheels = spec.wheels
             mob = unified.mobility(wheels)
-            ax.set_title(f"{name}\nrank C1 = {mob.rank_sliding}: δm = {mob.degree_of_mobility}"
-                         f", δs = {mob.degree_of_steerability}", fontsize=9)
+            ax.set_title(f"{name}: δm = {mob.degree_of_mobility}, "
+                         f"δs = {mob.degree_of_steerability} (rank C1 = {mob.rank_sliding})",
+                         fontsize=9)
             drawing = draw_vehicle(ax, spec, (0.0, 0.0, 0.0), show_icr=True,
                                    twist=(0.0, 0.0, 0.0), color=PALETTE[k])
             points = np.array([w.position for w in wheels])
             zeros = np.zeros(len(wheels))
             velocity = ax.quiver(points[:, 0], points[:, 1], zeros, zeros, angles="xy",
                                  scale_units="xy", scale=1.0, color=VELOCITY_COLOUR,
-                                 width=0.012, zorder=8)
+                                 units="inches", width=0.025, zorder=8)
             slide = ax.quiver(points[:, 0], points[:, 1], zeros, zeros, angles="xy",
-                              scale_units="xy", scale=1.0, color=SLIDE_COLOUR, width=0.014,
-                              zorder=9)
-            text = ax.text(0.5, 0.03, "", transform=ax.transAxes, ha="center", va="bottom",
+                              scale_units="xy", scale=1.0, color=SLIDE_COLOUR, units="inches",
+                              width=0.03, zorder=9)
+            text = ax.text(0.02, 0.03, "", transform=ax.transAxes, ha="left", va="bottom",
                            fontsize=9, bbox={"facecolor": "white", "edgecolor": "none",
                                              "alpha": 0.85})
             # arrows: 0.5 m/s drawn as 0.8 of the vehicle's reach
             self.axes.append(ax)
             self.items.append({"spec": spec, "wheels": wheels, "drawing": drawing,
                                "velocity": velocity, "slide": slide, "text": text,
-                               "points": points, "scale": 0.8 * reach / 0.5})
-        fig.subplots_adjust(left=0.01, right=0.99, bottom=0.02, top=0.86, wspace=0.05,
-                            hspace=0.3)
+                               "points": points, "scale": 0.8 * reach / 0.5, "lim": lim})
+        self.fit(left=0.01, right=0.99, bottom=0.01, top=0.94, wspace=0.03, hspace=0.14)
+
+    def fit(self, **adjust: float) -> None:
+        """Lay the axes out (``Figure.subplots_adjust(**adjust)``), then widen each one's
+        limits to fill its grid cell at equal scale, the vehicle and its arrows in view."""
+        self.fig.subplots_adjust(**adjust)
+        width, height = self.fig.get_size_inches()
+        for ax, item in zip(self.axes, self.items, strict=True):
+            box = ax.get_position(original=True)
+            ratio = (box.height * height) / (box.width * width)
+            lim = item["lim"]
+            xspan, yspan = 2 * lim, 2 * lim  # at least this much in view
+            if yspan / ratio >= xspan:
+                xspan = yspan / ratio
+            else:
+                yspan = xspan * ratio
+            ax.set_xlim(-xspan / 2, xspan / 2)
+            ax.set_ylim(-yspan / 2, yspan / 2)
 
     @property
     def artists(self) -> list:
@@ -165,7 +183,8 @@ def constraints_panel() -> Panel:
     }
 
     def setup():
-        fig = Figure(figsize=(6.7, 4.5), layout="none")  # fits the column and a 1366 x 768 screen
+        # 6.7 x 4.5 in: fits the column and a 1366 x 768 screen
+        fig = Figure(figsize=(6.7, 4.5), layout=fixed_layout())
         return fig, ConstraintView(fig)
 
     def update(view, vx, vy, omega, steer):
@@ -196,14 +215,14 @@ def tour_twists(frames: int = 48) -> np.ndarray:
     return np.vstack([strafe, turn, spin])
 
 
-def twist_tour_animation(frames: int = 32, figsize=(6.7, 4.8), dpi: int = 100
+def twist_tour_animation(frames: int = 32, figsize: tuple[float, float] = (6.7, 4.8), dpi: int = 100
                          ) -> SandboxAnimation:
     """The :class:`ConstraintView` while the twist tours :func:`tour_twists`, steered wheels
     steered; display with :func:`wheelkin.animation.show`."""
     twists = tour_twists(frames)
-    fig = Figure(figsize=figsize, dpi=dpi, layout="none")
+    fig = Figure(figsize=figsize, dpi=dpi, layout=fixed_layout())
     view = ConstraintView(fig)
-    fig.subplots_adjust(top=0.8, hspace=0.35)
+    view.fit(left=0.01, right=0.99, bottom=0.01, top=0.85, wspace=0.03, hspace=0.14)
     stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
 
     def update(f: int):
@@ -217,18 +236,19 @@ def twist_tour_animation(frames: int = 32, figsize=(6.7, 4.8), dpi: int = 100
                             repeat=True, colors=64, dynamic=[*view.artists, stamp])
 
 
-def manoeuvre_animation(runs: dict, frames: int = 16, figsize=(6.7, 5.4), dpi: int = 100
-                        ) -> SandboxAnimation:
-    """Sandbox runs of several vehicles side by side, one manoeuvre after another.
+def manoeuvre_animation(runs: dict, frames: int = 24, figsize: tuple[float, float] = (6.7, 4.0),
+                        dpi: int = 100) -> SandboxAnimation:
+    """Sandbox runs of several vehicles side by side: one row per manoeuvre, one column per
+    vehicle, every panel scaled to its own run, all manoeuvres played at once.
 
     Parameters
     ----------
     runs : dict of str to dict of str to (VehicleSpec, Trajectory, goal)
         ``{manoeuvre title: {vehicle name: (spec, trajectory, goal pose)}}``; every manoeuvre
-        has the same vehicles. ``goal`` (x, y, theta) is the pose the twist asked for, drawn
-        as a faint outline.
+        has the same vehicles and lasts as long. ``goal`` (x, y, theta) is the pose the twist
+        asked for at the end, drawn as a faint outline.
     frames : int
-        Frames per manoeuvre.
+        Frames of the animation (at most 40).
     """
     titles = list(runs)
     if not titles:
@@ -237,53 +257,51 @@ def manoeuvre_animation(runs: dict, frames: int = 16, figsize=(6.7, 5.4), dpi: i
     if any(list(runs[t]) != names for t in titles):
         raise ValueError("runs must give the same vehicles, in the same order, for every "
                          "manoeuvre")
-    fig = Figure(figsize=figsize, dpi=dpi, layout="none")
-    axes, drawings, goals, trails = [], [], [], []
-    columns = 2
-    rows = -(-len(names) // columns)
-    for k, name in enumerate(names):
-        ax = fig.add_subplot(rows, columns, k + 1)
-        spec = runs[titles[0]][name][0]
-        reach = _reach(spec)
-        span = [runs[t][name][1].pose[:, :2] for t in titles]
-        span += [np.array([runs[t][name][2][:2]]) for t in titles]
-        pts = np.vstack(span)
-        lo, hi = pts.min(0) - 1.3 * reach, pts.max(0) + 1.3 * reach
-        centre, half = (lo + hi) / 2, max(hi - lo) / 2
-        ax.set_xlim(centre[0] - half, centre[0] + half)
-        ax.set_ylim(centre[1] - half, centre[1] + half)
-        ax.set_aspect("equal")
-        ax.grid(True, color="#eeeeee", linewidth=0.6)
-        ax.tick_params(labelsize=8)
-        ax.set_title(name, fontsize=10)
-        goals.append(draw_vehicle(ax, spec, (0.0, 0.0, 0.0), color="#cccccc", alpha=0.35,
-                                  zorder=1.5))
-        drawings.append(draw_vehicle(ax, spec, (0.0, 0.0, 0.0), color=PALETTE[k], zorder=3))
-        (line,) = ax.plot([], [], color=PALETTE[k], linewidth=1.2, zorder=2)
-        trails.append(line)
-        axes.append(ax)
-    stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
-    fig.subplots_adjust(left=0.08, right=0.99, bottom=0.05, top=0.86, wspace=0.25,
-                        hspace=0.3)
-    n_total = frames * len(titles)
+    if isinstance(frames, bool) or not isinstance(frames, int) or not 2 <= frames <= 40:
+        raise ValueError(f"frames must be an integer in [2, 40], got {frames!r}")
+    fig = Figure(figsize=figsize, dpi=dpi, layout=fixed_layout())
+    panels = []
+    for row, title in enumerate(titles):
+        for col, name in enumerate(names):
+            spec, traj, goal = runs[title][name]
+            ax = fig.add_subplot(len(titles), len(names), row * len(names) + col + 1)
+            reach = _reach(spec)
+            pts = np.vstack([traj.pose[:, :2], np.asarray(goal, dtype=float)[None, :2]])
+            centre = (pts.min(0) + pts.max(0)) / 2
+            half = float(np.ptp(pts, axis=0).max()) / 2 + 1.3 * reach
+            ax.set_xlim(centre[0] - half, centre[0] + half)
+            ax.set_ylim(centre[1] - half, centre[1] + half)
+            ax.set_aspect("equal")
+            ax.set_xticks([])
+            ax.set_yticks([])
+            if row == 0:
+                ax.set_title(name.replace(" ", "\n", 1) if len(name) > 10 else name,
+                             fontsize=9)
+            if col == 0:
+                ax.set_ylabel(title.split(" ")[0] if title.startswith("strafe") else "spin",
+                              fontsize=9)
+            ghost = draw_vehicle(ax, spec, goal, traj.steering[-1], color="#cccccc",
+                                 alpha=0.5, zorder=1.5)
+            drawing = draw_vehicle(ax, spec, (0.0, 0.0, 0.0), color=PALETTE[col], zorder=3)
+            (line,) = ax.plot([], [], color=PALETTE[col], linewidth=1.2, zorder=2)
+            panels.append((traj, drawing, ghost, line))
+    duration = float(runs[titles[0]][names[0]][1].t[-1])
+    stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=9)
+    fig.subplots_adjust(left=0.04, right=0.99, bottom=0.01, top=0.8, wspace=0.06,
+                        hspace=0.06)
+    times = np.linspace(0.0, duration, frames)
 
     def update(f: int):
-        title = titles[f // frames]
-        j = f % frames
-        for k, name in enumerate(names):
-            _, traj, goal = runs[title][name]
-            times = np.linspace(0.0, float(traj.t[-1]), frames)
-            i = int(np.clip(np.searchsorted(traj.t, times[j] - 1e-12), 0, len(traj) - 1))
-            drawings[k].update(traj.pose[i], traj.steering[i], traj.twist[i],
-                               traj.slipping[i])
-            goals[k].update(goal, traj.steering[-1])
-            trails[k].set_data(traj.pose[: i + 1, 0], traj.pose[: i + 1, 1])
-            t_now = float(traj.t[i])
-        stamp.set_text(f"{title}   t = {t_now:4.2f} s\n(red wheel: slipping; grey: the "
-                       "pose asked for)")
+        for traj, drawing, _, line in panels:
+            i = int(np.clip(np.searchsorted(traj.t, times[f] - 1e-12), 0, len(traj) - 1))
+            drawing.update(traj.pose[i], traj.steering[i], traj.twist[i], traj.slipping[i])
+            line.set_data(traj.pose[: i + 1, 0], traj.pose[: i + 1, 1])
+        stamp.set_text(f"t = {times[f]:4.2f} s\nred wheel: slipping; grey: the pose asked for "
+                       f"at t = {duration:g} s")
         return []
 
     update(0)
-    dynamic = [a for d in drawings + goals for a in d.artists] + trails + [stamp]
-    return SandboxAnimation(fig, update, frames=n_total, interval=150, blit=False,
+    dynamic = [a for _, d, _, _ in panels for a in d.artists]
+    dynamic += [line for *_, line in panels] + [stamp]
+    return SandboxAnimation(fig, update, frames=frames, interval=150, blit=False,
                             repeat=True, colors=64, dynamic=dynamic)

@@ -1,10 +1,10 @@
-"""The waypoint-lab chapter's live panel (notebooks/07_waypoints) and its fast lap model.
+r"""The waypoint-lab chapter's live panel (notebooks/07_waypoints) and its fast lap model.
 
 A lap of the sandbox takes seconds (the skid steer slips in every turn, and each slipping step
 is a small optimisation), too slow to follow a slider. The panel therefore drives a *reduced*
 model of the lab robot, :class:`wheelkin.follower.KinematicSkidSteer` (re-exported here): a
 differential drive whose yaw rate is the wheels' ideal one divided by the skid factor
-:math:`\\chi` (the sandbox's, measured in the chapter: :math:`\\chi = 1 + a^2/b^2` for a pure
+:math:`\chi` (the sandbox's, measured in the chapter: :math:`\chi = 1 + a^2/b^2` for a pure
 spin with Coulomb friction), with the same first-order motor lag. It has the interface of a
 sandbox robot, so the very same :class:`wheelkin.follower.FollowerController` drives it. The
 chapter checks it against the sandbox's closed-loop lap.
@@ -22,11 +22,14 @@ from functools import lru_cache
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.patches import Polygon
+from numpy.typing import ArrayLike
 
 from wheelkin import waypoints as wp
 from wheelkin.follower import FollowerController, KinematicSkidSteer, PathFollower
 from wheelkin.sandbox import LAB_ROBOT
+from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 from wheelkin.widgets._blit import BlitList
 
@@ -129,7 +132,7 @@ def _robot_outline(pose) -> np.ndarray:
 class LabView:
     """The maze from above with the plan, a true path, an estimate and the robot."""
 
-    def __init__(self, ax) -> None:
+    def __init__(self, ax: Axes) -> None:
         self.ax = ax
         for (x0, y0), (x1, y1) in wp.LAB_WALLS:
             ax.plot([x0, x1], [y0, y1], color="k", lw=2.0, solid_capstyle="round")
@@ -159,7 +162,7 @@ class LabView:
         over a picture of the rest (the arena's limits are fixed)."""
         return self._blit()
 
-    def show(self, truth, estimate=None, text: str = "") -> None:
+    def show(self, truth: ArrayLike, estimate: ArrayLike | None = None, text: str = "") -> None:
         """Draw a true path (N, 3), an optional estimate, the robot at the path's end."""
         truth = np.asarray(truth, dtype=float)
         self.truth.set_data(truth[:, 0], truth[:, 1])
@@ -173,7 +176,7 @@ class LabView:
 
 
 def _setup():
-    fig, ax = plt.subplots(figsize=(4.8, 4.8), layout="none")
+    fig, ax = plt.subplots(figsize=(4.8, 4.8), layout=fixed_layout())
     view = LabView(ax)
     ax.set_title("Closed-loop lap (fast kinematic skid-steer model)", fontsize=10)
     fig.tight_layout()
