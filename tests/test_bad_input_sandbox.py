@@ -33,6 +33,8 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from test_bad_input import BAD_VALUES, _finite_leaves
 
+from wheelkin.style import fixed_layout
+
 SANDBOX_MODULES = ("world", "sensors", "render", "vehicles", "contact", "car")
 #: Methods that take no argument, or only what a caller never passes (pymunk's callbacks).
 NO_ARGUMENTS = {"remove", "close"}
@@ -179,15 +181,19 @@ def _entries():
             return getattr(enc, name)
         return make
 
+    def then(make, finish):
+        """``make`` with its own signature, and ``finish`` applied to what it made."""
+        def call(**kwargs):
+            made = make(**kwargs)
+            finish(made)
+            return made
+
+        call.__signature__ = inspect.signature(make)
+        return call
+
     def drawn(make_drawing):
         """A drawing is taken off the shared axes once made (its artists were checked)."""
-        def call(**kwargs):
-            drawing = make_drawing(**kwargs)
-            drawing.remove()
-            return drawing
-
-        call.__signature__ = inspect.signature(make_drawing)
-        return call
+        return then(make_drawing, lambda drawing: drawing.remove())
 
     @lru_cache(maxsize=1)
     def drawing_update():
@@ -196,7 +202,7 @@ def _entries():
 
     @lru_cache(maxsize=1)
     def slip_view_update():
-        fig = Figure(figsize=(6.0, 4.6), dpi=100, layout="none")
+        fig = Figure(figsize=(6.0, 4.6), dpi=100, layout=fixed_layout())
         FigureCanvasAgg(fig)  # as the panel gives it
         view = panel.SlipView(fig)
 
@@ -210,13 +216,7 @@ def _entries():
     def animation(make_animation):
         """An animation is started (its first frame set up, no image drawn): that runs the
         frame function once, and an animation deleted unstarted would warn."""
-        def call(**kwargs):
-            anim = make_animation(**kwargs)
-            anim._init_draw()
-            return anim
-
-        call.__signature__ = inspect.signature(make_animation)
-        return call
+        return then(make_animation, lambda anim: anim._init_draw())
 
     def to_jshtml():
         fig = Figure(figsize=(1.0, 1.0), dpi=20)

@@ -203,26 +203,34 @@ class Exercise:
             return self._fail("raised", f"expected a function, got {type(fn).__name__}")
         for case in self.cases:
             where = case.describe(self.arg_names)
-            expected = _as_array(self.reference(*case.args, **case.kwargs))
             raw = self._answer(fn, case, where)
-            if isinstance(raw, CheckResult):
-                return raw
-            try:
-                got = _as_array(raw)
-            except (TypeError, ValueError):
-                return self._fail("shape", f"for {where} you returned {raw!r}, which is not a "
-                                  "number or an array of numbers")
-            if got.shape != expected.shape:
-                return self._fail("shape", f"for {where} you returned shape {got.shape} "
-                                  f"({_fmt(raw)}), expected shape {expected.shape}")
-            if np.any(np.isnan(got)) or np.any(np.isinf(got) & np.isfinite(expected)):
-                return self._fail("nan", f"for {where} your answer contains NaN or infinity: "
-                                  f"{_fmt(got)}")
-            if self._close(got, expected):
-                continue
-            return self._diagnose(case, where, got, expected)
-        return CheckResult(self.name, True, f"✔ {self.name}: correct on all {len(self.cases)} "
-                           "cases.", "pass")
+            problem = raw if isinstance(raw, CheckResult) else self._judge(case, where, raw)
+            if problem is not None:
+                return problem
+        return CheckResult(self.name, True, self._passed(), "pass")
+
+    def _passed(self) -> str:
+        """The message of a check that every case passed."""
+        return f"✔ {self.name}: correct on all {len(self.cases)} cases."
+
+    def _judge(self, case: Case, where: str, raw: Any) -> CheckResult | None:
+        """None if the answer ``raw`` to ``case`` is right, else the diagnosis: here, by
+        comparing it with the reference's answer (subclasses may judge otherwise)."""
+        expected = _as_array(self.reference(*case.args, **case.kwargs))
+        try:
+            got = _as_array(raw)
+        except (TypeError, ValueError):
+            return self._fail("shape", f"for {where} you returned {raw!r}, which is not a "
+                              "number or an array of numbers")
+        if got.shape != expected.shape:
+            return self._fail("shape", f"for {where} you returned shape {got.shape} "
+                              f"({_fmt(raw)}), expected shape {expected.shape}")
+        if np.any(np.isnan(got)) or np.any(np.isinf(got) & np.isfinite(expected)):
+            return self._fail("nan", f"for {where} your answer contains NaN or infinity: "
+                              f"{_fmt(got)}")
+        if self._close(got, expected):
+            return None
+        return self._diagnose(case, where, got, expected)
 
     def _diagnose(self, case: Case, where: str, got: np.ndarray,
                   expected: np.ndarray) -> CheckResult:
