@@ -209,7 +209,8 @@ def check_geometry() -> None:
         spec = SPECS[key]
         actual = {w.name: w for w in spec.driven_wheels}
         if list(actual) != list(wheels) or any(
-                math.dist(actual[n].position, p) > 1e-12 or abs(actual[n].radius - radius) > 1e-12
+                math.dist(actual[n].position, p) > 1e-12
+                or abs(actual[n].wheel_radius - radius) > 1e-12
                 or actual[n].heading != 0.0
                 or (key == "mecanum" and abs(actual[n].roller_angle - ROLLERS[n]) > 1e-12)
                 for n, p in wheels.items()):

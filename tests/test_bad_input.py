@@ -323,8 +323,10 @@ def _public_callables():
         mod = importlib.import_module(f"wheelkin.{mod_name}")
         for name in mod.__all__:
             obj = getattr(mod, name)
-            if not callable(obj) or (isinstance(obj, type) and issubclass(obj, tuple)):
-                continue  # constants; NamedTuple results (outputs, not inputs)
+            if not callable(obj) or (isinstance(obj, type) and issubclass(obj, tuple)
+                                     and obj.__bases__ == (tuple,)):
+                continue  # constants; NamedTuple results (outputs, not inputs; Pose and
+                # Twist, which validate what they are given, are swept)
             if isinstance(obj, type) and typing.Protocol in obj.__mro__:
                 continue  # a Protocol describes, it is not called
             if getattr(obj, "__module__", "") != mod.__name__:

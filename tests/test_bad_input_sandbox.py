@@ -105,7 +105,7 @@ def _good_values() -> dict:
         "interval": 100.0, "limits": (-1.0, 1.0, -1.0, 1.0), "colors": 16, "dynamic": (),
         "func": lambda frame: [], "mu": 0.8,
         # vehicles
-        "name": "L", "position": (0.0, 0.05), "heading": 0.0, "radius": 0.02, "kind": "fixed",
+        "name": "L", "position": (0.0, 0.05), "heading": 0.0, "kind": "fixed",
         "roller_angle": 0.785, "load_fraction": 0.5, "width": 0.01, "mass": 1.0,
         "inertia": 0.01, "body": spec.body, "wheels": spec.wheels, "encoder_noise": 0.0,
         "motor_time_constant": 0.0, "steered_names": None, "free_rolling": (),
@@ -674,4 +674,4 @@ def test_a_motor_lag_much_longer_than_the_step_keeps_the_mean_rate_exact():
     traj = world.run(dt)
     expected = start * (1.0 - dt / (2.0 * tau))
     np.testing.assert_allclose(traj.wheel_rates[-1], expected, rtol=1e-13)
-    assert start[0] == pytest.approx(0.2 / sb.RADON_ULZER.driven_wheels[0].radius, rel=1e-12)
+    assert start[0] == pytest.approx(0.2 / sb.RADON_ULZER.driven_wheels[0].wheel_radius, rel=1e-12)

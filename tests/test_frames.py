@@ -6,8 +6,8 @@ integration of the world-frame ODE; homogeneous 3x3 matrices for composition; ea
 update equations and printed numbers for the converters.
 """
 
-import dataclasses
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -73,14 +73,21 @@ def same_angle(a, b, tol=1e-9):
 
 
 @pytest.mark.parametrize("cls", [Pose, Twist])
-def test_dataclasses_validate_and_freeze(cls):
-    names = [f.name for f in dataclasses.fields(cls)]
+def test_pose_and_twist_validate_freeze_and_unpack(cls):
+    names = list(cls._fields)
     obj = cls(1, 2, 3)
     assert obj.as_array().tolist() == [1.0, 2.0, 3.0]
-    assert all(isinstance(getattr(obj, n), float) for n in names)
+    assert np.asarray(obj).tolist() == [1.0, 2.0, 3.0]
+    assert all(type(getattr(obj, n)) is float for n in names)
+    a, b, c = obj  # a NamedTuple unpacks
+    assert (a, b, c) == (1.0, 2.0, 3.0)
     assert cls.from_array(obj.as_array()) == obj
-    with pytest.raises(dataclasses.FrozenInstanceError):
+    with pytest.raises(AttributeError):
         setattr(obj, names[0], 5.0)
+    with pytest.raises(ValueError, match=rf"^{names[1]} must be a finite number"):
+        obj._replace(**{names[1]: math.nan})
+    assert obj._replace(**{names[2]: 4.0}) == cls(1, 2, 4)
+    assert pickle.loads(pickle.dumps(obj)) == obj
     for i, name in enumerate(names):
         for bad in (math.nan, math.inf, "x", None, True):
             args = [0.0, 0.0, 0.0]
@@ -168,12 +175,12 @@ def test_the_icr_does_not_move(vx, vy, w):
 
 
 def test_icr_examples_and_signs():
-    assert icr(Twist(1.0, 0.0, 0.5)) == (0.0, 2.0)  # left turn: ICR on the left
-    assert icr(Twist(1.0, 0.0, -0.5)) == (0.0, -2.0)  # right turn: on the right
-    assert icr(Twist(0.0, 0.0, 1.0)) == (0.0, 0.0)  # spin in place
+    assert icr(Twist(1.0, 0.0, 0.5)).tolist() == [0.0, 2.0]  # left turn: ICR on the left
+    assert icr(Twist(1.0, 0.0, -0.5)).tolist() == [0.0, -2.0]  # right turn: on the right
+    assert icr(Twist(0.0, 0.0, 1.0)).tolist() == [0.0, 0.0]  # spin in place
     assert icr(Twist(1.0, 0.0, 0.0)) is None
     assert icr(Twist(0.0, 0.0, 0.0)) is None
-    assert icr([1.0, 0.0, 0.5]) == (0.0, 2.0)
+    assert icr([1.0, 0.0, 0.5]).tolist() == [0.0, 2.0]
     out = icr_array(np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 2.0, 1.0]]))
     assert np.all(np.isinf(out[:2]))
     np.testing.assert_allclose(out[2], [-2.0, 1.0])

@@ -34,7 +34,7 @@ from wheelkin.mecanum import (
 )
 from wheelkin.units import FOOT
 
-G = MecanumGeometry(0.05, 0.2, 0.15)
+G = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
 finite = st.floats(-10, 10, allow_nan=False)
 dims = st.floats(0.01, 2.0)
 angles = st.floats(0.1, math.pi / 2 - 0.1)
@@ -68,7 +68,7 @@ def test_inverse_matches_sympy_derivation_at_many_points():
         vx, vy, w = rng.uniform(-3, 3, 3)
         a, b, r = rng.uniform(0.02, 1.0, 3)
         gamma = rng.uniform(0.2, 1.4)
-        g = MecanumGeometry(r, a, b, roller_angle=gamma)
+        g = MecanumGeometry(wheel_radius=r, half_wheelbase=a, half_track=b, roller_angle=gamma)
         expected = np.array(SYMPY_ROWS(vx, vy, w, a, b, r, gamma), dtype=float)
         np.testing.assert_allclose(inverse_kinematics(vx, vy, w, g), expected,
                                    rtol=1e-12, atol=1e-9)
@@ -90,7 +90,7 @@ def test_forward_left_needs_fl_rr_slower():
 
 def test_forward_matrix_is_numpy_pseudo_inverse():
     for gamma in (math.pi / 4, math.pi / 3, 0.3):
-        g = MecanumGeometry(0.07, 0.3, 0.2, roller_angle=gamma)
+        g = MecanumGeometry(wheel_radius=0.07, half_wheelbase=0.3, half_track=0.2, roller_angle=gamma)
         np.testing.assert_allclose(forward_matrix(g), np.linalg.pinv(inverse_matrix(g)),
                                    rtol=1e-12, atol=1e-15)
 
@@ -98,7 +98,7 @@ def test_forward_matrix_is_numpy_pseudo_inverse():
 @settings(max_examples=60, deadline=None)
 @given(finite, finite, finite, dims, dims, dims, angles)
 def test_forward_after_inverse_is_identity(vx, vy, w, r, a, b, gamma):
-    g = MecanumGeometry(r, a, b, roller_angle=gamma)
+    g = MecanumGeometry(wheel_radius=r, half_wheelbase=a, half_track=b, roller_angle=gamma)
     np.testing.assert_allclose(forward_kinematics(inverse_kinematics(vx, vy, w, g), g),
                                [vx, vy, w], atol=1e-9)
 
@@ -106,7 +106,7 @@ def test_forward_after_inverse_is_identity(vx, vy, w, r, a, b, gamma):
 @settings(max_examples=60, deadline=None)
 @given(st.lists(finite, min_size=4, max_size=4), angles)
 def test_rates_split_into_motion_and_fighting(rates, gamma):
-    g = MecanumGeometry(0.06, 0.25, 0.2, roller_angle=gamma)
+    g = MecanumGeometry(wheel_radius=0.06, half_wheelbase=0.25, half_track=0.2, roller_angle=gamma)
     rates = np.array(rates)
     moving = inverse_kinematics(*forward_kinematics(rates, g), g)
     np.testing.assert_allclose(rates - moving, fighting_component(rates) * FIGHTING_PATTERN,
@@ -115,7 +115,7 @@ def test_rates_split_into_motion_and_fighting(rates, gamma):
 
 def test_fighting_pattern_is_the_null_space():
     for gamma in (math.pi / 4, math.pi / 3):
-        g = MecanumGeometry(0.05, 0.2, 0.15, roller_angle=gamma)
+        g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15, roller_angle=gamma)
         np.testing.assert_allclose(inverse_matrix(g).T @ FIGHTING_PATTERN, 0.0, atol=1e-12)
         np.testing.assert_allclose(forward_kinematics(5 * FIGHTING_PATTERN, g), 0.0,
                                    atol=1e-12)
@@ -139,7 +139,7 @@ def test_linear_in_the_twist(vx, vy, w, c):
 
 
 def test_sixty_degree_rollers_by_hand():
-    g = MecanumGeometry(0.05, 0.2, 0.15, roller_angle=math.pi / 3)
+    g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15, roller_angle=math.pi / 3)
     c = 1 / math.sqrt(3)
     k = 0.15 + 0.2 * c
     np.testing.assert_allclose(g.k, k)
@@ -242,7 +242,7 @@ def test_max_rim_speed_is_the_fastest_wheel():
     rng = np.random.default_rng(1)
     tw = rng.uniform(-2, 2, (100, 3))
     for gamma in (math.pi / 4, 1.0):
-        g = MecanumGeometry(0.05, 0.2, 0.15, roller_angle=gamma)
+        g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15, roller_angle=gamma)
         rates = inverse_kinematics(tw[:, 0], tw[:, 1], tw[:, 2], g)
         np.testing.assert_allclose(max_rim_speed(tw[:, 0], tw[:, 1], tw[:, 2], g),
                                    np.max(np.abs(rates), axis=-1) * 0.05, rtol=1e-12)
@@ -324,10 +324,10 @@ def test_go_to_point_at_goal_and_vectorised():
 @pytest.mark.parametrize(
     ("call", "name"),
     [
-        (lambda: MecanumGeometry(0.0, 0.2, 0.15), "wheel_radius"),
-        (lambda: MecanumGeometry(0.05, float("nan"), 0.15), "half_wheelbase"),
-        (lambda: MecanumGeometry(0.05, 0.2, -1), "half_track"),
-        (lambda: MecanumGeometry(0.05, 0.2, 0.15, roller_angle=math.pi / 2), "roller_angle"),
+        (lambda: MecanumGeometry(wheel_radius=0.0, half_wheelbase=0.2, half_track=0.15), "wheel_radius"),
+        (lambda: MecanumGeometry(wheel_radius=0.05, half_wheelbase=float("nan"), half_track=0.15), "half_wheelbase"),
+        (lambda: MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=-1), "half_track"),
+        (lambda: MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15, roller_angle=math.pi / 2), "roller_angle"),
         (lambda: inverse_kinematics(float("nan"), 0, 0, G), "vx"),
         (lambda: inverse_kinematics(0, [1, 2], [1, 2, 3], G), "vy and omega"),
         (lambda: inverse_kinematics(0, 0, float("inf"), G), "omega"),
@@ -434,8 +434,9 @@ def test_sandbox_commands_equal_inverse_kinematics():
 
     rng = np.random.default_rng(9)
     for gamma in (math.pi / 4, math.pi / 3):
-        spec = sandbox.mecanum(0.0762, 0.3048, 0.2286, roller_angle=gamma)
-        g = MecanumGeometry(0.0762, 0.3048, 0.2286, roller_angle=gamma)
+        spec = sandbox.mecanum(half_wheelbase=0.3048, half_track=0.2286, wheel_radius=0.0762,
+                            roller_angle=gamma)
+        g = MecanumGeometry(wheel_radius=0.0762, half_wheelbase=0.3048, half_track=0.2286, roller_angle=gamma)
         for twist in rng.uniform(-2, 2, (20, 3)):
             rates, _ = sandbox.ideal_commands(spec, twist)
             np.testing.assert_allclose(rates, inverse_kinematics(*twist, g), rtol=1e-12,
@@ -445,7 +446,8 @@ def test_sandbox_commands_equal_inverse_kinematics():
 def test_sandbox_follows_the_kinematics_within_friction():
     from wheelkin import sandbox
 
-    spec = sandbox.mecanum(0.0762, 0.3048, 0.2286, mass=20.0)
+    spec = sandbox.mecanum(half_wheelbase=0.3048, half_track=0.2286, wheel_radius=0.0762,
+                            mass=20.0)
     twist = np.array([1.0, 0.5, 0.4])
     world = sandbox.World(dt=1 / 240)
     robot = world.add(spec, twist=twist)
@@ -463,7 +465,8 @@ def test_sandbox_slips_where_grip_usage_passes_one(heading, usage_per_a):
     # rotating heading needs sqrt2 a (sideways)
     from wheelkin import sandbox
 
-    spec = sandbox.mecanum(0.0762, 0.3048, 0.2286, mass=20.0)
+    spec = sandbox.mecanum(half_wheelbase=0.3048, half_track=0.2286, wheel_radius=0.0762,
+                            mass=20.0)
     radius, mu_g = 1.5, spec.mu * 9.81
     for usage, slips in ((0.97, False), (1.03, True)):
         accel = usage * mu_g / usage_per_a
@@ -502,7 +505,7 @@ def _wpilib_desaturate(speeds, limit):
 @given(st.floats(-2, 2), st.floats(-2, 2), st.floats(-3, 3), st.floats(-0.5, 0.5),
        st.floats(-0.5, 0.5))
 def test_centre_of_rotation_is_wpilibs(vx, vy, omega, cx, cy):
-    g = MecanumGeometry(0.05, 0.2, 0.15)
+    g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     got = mecanum.inverse_kinematics(vx, vy, omega, g, centre_of_rotation=(cx, cy))
     want = _wpilib_mecanum_wheel_speeds(vx, vy, omega, (0.2, 0.15), (0.2, -0.15),
                                         (-0.2, 0.15), (-0.2, -0.15), (cx, cy))
@@ -515,7 +518,7 @@ def test_centre_of_rotation_is_wpilibs(vx, vy, omega, cx, cy):
 
 def test_turning_about_a_wheel_leaves_it_still_for_any_roller_angle():
     for gamma in (0.3, math.pi / 4, 1.2):
-        g = MecanumGeometry(0.05, 0.2, 0.15, gamma)
+        g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15, roller_angle=gamma)
         for k, (x, y) in enumerate([(0.2, 0.15), (0.2, -0.15), (-0.2, 0.15), (-0.2, -0.15)]):
             rates = mecanum.inverse_kinematics(0.0, 0.0, 1.3, g, centre_of_rotation=(x, y))
             assert abs(rates[k]) < 1e-12
@@ -524,7 +527,7 @@ def test_turning_about_a_wheel_leaves_it_still_for_any_roller_angle():
 def test_unified_model_has_the_same_centre_of_rotation():
     from wheelkin import unified
 
-    g = MecanumGeometry(0.05, 0.2, 0.15, 0.6)
+    g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15, roller_angle=0.6)
     got = unified.wheel_rates(unified.mecanum_wheels(g), (0.3, -0.2, 0.7),
                               centre_of_rotation=(0.1, -0.4))
     want = mecanum.inverse_kinematics(0.3, -0.2, 0.7, g, centre_of_rotation=(0.1, -0.4))
@@ -542,7 +545,7 @@ def test_desaturate_is_wpilibs(rates, limit):
 
 
 def test_desaturate_keeps_the_motion_direction_and_vectorises():
-    g = MecanumGeometry(0.05, 0.2, 0.15)
+    g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     rates = mecanum.inverse_kinematics(3.0, 1.0, 2.0, g)
     out = mecanum.desaturate(rates, 20.0)
     twist_in = mecanum.forward_kinematics(rates, g)

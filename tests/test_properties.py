@@ -66,7 +66,7 @@ def close(a, b, scale=1.0, tol=1e-9):
 @SETTINGS
 @given(batch, length, length, length, roller)
 def test_mecanum_forward_after_inverse_is_the_identity_on_a_batch(twists, r, a, b, gamma):
-    g = mecanum.MecanumGeometry(r, a, b, roller_angle=gamma)
+    g = mecanum.MecanumGeometry(wheel_radius=r, half_wheelbase=a, half_track=b, roller_angle=gamma)
     rates = mecanum.inverse_kinematics(twists[:, 0], twists[:, 1], twists[:, 2], g)
     assert rates.shape == (len(twists), 4)
     scale = 1 + np.abs(twists).max() * (1 + a + b)
@@ -202,7 +202,7 @@ def _rolling_velocities(spec, twist_) -> np.ndarray:
     out = []
     for wheel, phi in zip(spec.driven_wheels, rates, strict=True):
         direction = wheel.heading + steer.get(wheel.name, 0.0)
-        out.append(wheel.radius * phi * np.array([math.cos(direction), math.sin(direction)]))
+        out.append(wheel.wheel_radius * phi * np.array([math.cos(direction), math.sin(direction)]))
     return np.array(out)
 
 
@@ -220,7 +220,7 @@ def test_every_vehicle_mirrors_a_left_turn_into_a_right_turn(name, twist_):
 @SETTINGS
 @given(batch, length, length, length, roller)
 def test_mecanum_mirror_swaps_left_and_right_wheels_for_any_geometry(twists, r, a, b, gamma):
-    g = mecanum.MecanumGeometry(r, a, b, roller_angle=gamma)
+    g = mecanum.MecanumGeometry(wheel_radius=r, half_wheelbase=a, half_track=b, roller_angle=gamma)
     vx, vy, w = twists.T
     rates = mecanum.inverse_kinematics(vx, vy, w, g)
     mirrored = mecanum.inverse_kinematics(vx, -vy, -w, g)
@@ -273,7 +273,7 @@ def test_mirrored_twists_drive_the_mirrored_path(twists, dt):
 # Scaling: doubling the speed doubles every wheel speed
 # --------------------------------------------------------------------------------------------
 
-_G60 = mecanum.MecanumGeometry(0.05, 0.2, 0.15, roller_angle=math.pi / 3)
+_G60 = mecanum.MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15, roller_angle=math.pi / 3)
 #: Every formula from a body motion to wheel speeds: (name, fn(vx, vy, omega) -> array).
 WHEEL_SPEED_FORMULAS = [
     ("rover, six wheels (document units)",
@@ -288,9 +288,9 @@ WHEEL_SPEED_FORMULAS = [
     *[(f"unified model, {n}",
        lambda vx, vy, w, wheels=wheels: unified.wheel_rates(wheels, (vx, vy, w)))
       for n, wheels in [("differential drive", unified.diff_drive_wheels(0.085, 0.018)),
-                        ("skid steer", unified.skid_steer_wheels(0.06, 0.05, 0.04)),
+                        ("skid steer", unified.skid_steer_wheels(half_track=0.06, half_wheelbase=0.05, wheel_radius=0.04)),
                         ("mecanum", unified.mecanum_wheels(mecanum.EXAMPLE_GEOMETRY)),
-                        ("rover", unified.rover_wheels(radius_in=-40.0))]],
+                        ("rover", unified.rover_wheels(turning_radius=40.0 * units.INCH))]],
     *[(f"sandbox, {n}", lambda vx, vy, w, spec=spec: ideal_commands(spec, (vx, vy, w))[0])
       for n, spec in SANDBOX_VEHICLES.items()],
 ]
@@ -357,7 +357,7 @@ def _drive(spec, plan, dt=1 / 240, record_every=1):
 
 
 #: Radon Ulzer: wheel radius, track and travel per encoder count of the sandbox's robot.
-_RU_RADIUS = RADON_ULZER.driven_wheels[0].radius
+_RU_RADIUS = RADON_ULZER.driven_wheels[0].wheel_radius
 _RU_TRACK = RADON_ULZER.driven_wheels[0].position[1] - RADON_ULZER.driven_wheels[1].position[1]
 _RU_COUNT_MM = 2 * math.pi * _RU_RADIUS / RADON_ULZER.steps_per_rev * 1000  # mm per count
 LOOPS = {

@@ -511,7 +511,7 @@ def test_a_geometry_in_metres_and_in_inches_is_the_same_rover():
         # omega x / (v - omega y) for the left front corner at (10.5 in, 7.254 in), by hand
         x, y = 10.5 * 0.0254, 7.254 * 0.0254
         assert cmd.steering_angles[0] == pytest.approx(math.atan(0.004 * x / (0.2 - 0.004 * y)))
-        wheels = unified.rover_wheels(geometry, 0.06, radius_in=30.0)
+        wheels = unified.rover_wheels(geometry, 0.06, turning_radius=-30.0 * rover.INCH)
         assert wheels[0].position == pytest.approx((x, y), abs=1e-15)
         assert sandbox_rover(geometry).wheels[0].position == pytest.approx((x, y), abs=1e-15)
     inches = metric.in_unit("in")

@@ -59,8 +59,10 @@ IDS = ["diff drive", "skid steer", "mecanum", "rover"]
         (lambda: diff_drive(0.1, -0.02), "wheel_radius"),
         (lambda: diff_drive(0.0, 0.02), "track_width"),
         (lambda: diff_drive(0.1, 0.02, caster_load=1.0), "caster_load"),
-        (lambda: skid_steer(0.06, -0.05, 0.04), "half_wheelbase"),
-        (lambda: mecanum(0.05, 0.15, 0.15, roller_angle=math.pi / 2), "roller_angle"),
+        (lambda: skid_steer(half_wheelbase=-0.05, half_track=0.06, wheel_radius=0.04),
+         "half_wheelbase"),
+        (lambda: mecanum(half_wheelbase=0.15, half_track=0.15, wheel_radius=0.05,
+                         roller_angle=math.pi / 2), "roller_angle"),
         (lambda: rover(wheel_radius=float("nan")), "wheel_radius"),
         (lambda: rover((7.0, 10.0, 10.0, 10.0)), "geometry"),
         (lambda: RADON_ULZER.replace(mu=0.0), "mu"),
@@ -142,11 +144,11 @@ def test_factories_place_the_wheels_as_documented():
     assert LAB_ROBOT.wheel_names == ("FL", "FR", "RL", "RR")
     np.testing.assert_allclose([w.position for w in LAB_ROBOT.wheels],
                                [(0.05, 0.06), (0.05, -0.06), (-0.05, 0.06), (-0.05, -0.06)])
-    assert LAB_ROBOT.driven_wheels[0].radius == 0.04
+    assert LAB_ROBOT.driven_wheels[0].wheel_radius == 0.04
     assert RADON_ULZER.wheel_names == ("L", "R")
     assert [w.kind for w in RADON_ULZER.wheels] == ["fixed", "fixed", "caster"]
     # 12 * 75.81 counts per revolution of a 0.113097 m wheel: 8043 steps per metre.
-    r = RADON_ULZER.driven_wheels[0].radius
+    r = RADON_ULZER.driven_wheels[0].wheel_radius
     assert 2 * math.pi * r == pytest.approx(0.113097)
     assert RADON_ULZER.steps_per_rev / (2 * math.pi * r) == pytest.approx(8043, abs=1)
     for spec in ALL:
@@ -182,7 +184,7 @@ def test_mecanum_ideal_rates_are_the_documented_x_arrangement(twist):
 @given(st.floats(-1, 1), st.floats(-3, 3))
 def test_diff_drive_ideal_rates_invert_the_forward_kinematics(v, w):
     rates, _ = ideal_commands(RADON_ULZER, (v, 0.0, w))
-    r, W = RADON_ULZER.driven_wheels[0].radius, 0.085
+    r, W = RADON_ULZER.driven_wheels[0].wheel_radius, 0.085
     assert r * (rates[0] + rates[1]) / 2 == pytest.approx(v, abs=1e-12)
     assert r * (rates[1] - rates[0]) / W == pytest.approx(w, abs=1e-12)
 
@@ -411,7 +413,7 @@ def test_encoder_counts_match_wheel_travel_within_one_step():
     assert traj.encoder_counts.dtype == np.int64
     assert np.abs(traj.encoder_counts - travel).max() <= 0.5 + 1e-9
     # Distance from counts: within one step's length (0.113097 m / 909.72) of the truth.
-    r = RADON_ULZER.driven_wheels[0].radius
+    r = RADON_ULZER.driven_wheels[0].wheel_radius
     step_length = 2 * math.pi * r / spr
     dist = traj.encoder_counts * step_length
     assert np.abs(dist - traj.wheel_angles * r).max() <= step_length

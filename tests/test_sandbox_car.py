@@ -117,8 +117,9 @@ def test_pure_pursuit_follows_a_circle():
 
 
 @pytest.mark.parametrize("call, match", [
-    (lambda: car(0.0, 0.27, 0.05), "wheelbase must be a finite number > 0"),
-    (lambda: car(0.33, 0.27, 0.05, front_load=0.0), r"front_load must be in \(0, 1\)"),
+    (lambda: car(wheelbase=0.0, track_width=0.27, wheel_radius=0.05),
+     "wheelbase must be a finite number > 0"),
+    (lambda: car(wheelbase=0.33, track_width=0.27, wheel_radius=0.05, front_load=0.0), r"front_load must be in \(0, 1\)"),
     (lambda: Steering("rack"), "geometry must be one of"),
     (lambda: Steering("linkage", arm_length=-1), "arm_length"),
     (lambda: front_angles(Steering(), 2.0, L, W), "delta must be in"),

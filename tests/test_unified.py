@@ -143,7 +143,7 @@ def test_diff_drive_rates_are_the_diffdrive_chapter(v, omega, track, radius):
        radius=st.floats(0.01, 0.2))
 def test_skid_steer_rates_are_the_diffdrive_chapter_with_the_geometric_track(
         v, omega, half_track, half_wheelbase, radius):
-    wheels = skid_steer_wheels(half_track, half_wheelbase, radius)
+    wheels = skid_steer_wheels(half_track=half_track, half_wheelbase=half_wheelbase, wheel_radius=radius)
     expected = diffdrive.skid_steer_wheel_speeds(v, omega, 2 * half_track)
     np.testing.assert_allclose(wheel_rates(wheels, (v, 0.0, omega)) * radius, expected,
                                atol=1e-12)
@@ -153,7 +153,7 @@ def test_skid_steer_rates_are_the_diffdrive_chapter_with_the_geometric_track(
 @given(twist=twists, a=lengths, b=lengths, radius=st.floats(0.01, 0.2),
        gamma=st.floats(0.1, math.pi / 2 - 0.1))
 def test_mecanum_rates_are_the_mecanum_chapter(twist, a, b, radius, gamma):
-    g = MecanumGeometry(radius, a, b, gamma)
+    g = MecanumGeometry(wheel_radius=radius, half_wheelbase=a, half_track=b, roller_angle=gamma)
     np.testing.assert_allclose(wheel_rates(mecanum_wheels(g), twist),
                                mecanum.inverse_kinematics(*twist, g), rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(rolling_matrix(mecanum_wheels(g)),
@@ -172,7 +172,7 @@ def _radius_in(geometry: RoverGeometry):
 def test_rover_rates_are_the_rover_chapter(data, speed, wheel_radius, dims):
     g = RoverGeometry(*dims)
     radius = data.draw(_radius_in(g))
-    wheels = rover_wheels(g, wheel_radius, radius)
+    wheels = rover_wheels(g, wheel_radius, -radius * INCH)
     twist = rover.body_twist(radius, speed, g)
     rim_in_per_s = wheel_rates(wheels, twist) * wheel_radius / INCH
     np.testing.assert_allclose(rim_in_per_s, rover.wheel_speeds(radius, speed, g),
@@ -182,7 +182,7 @@ def test_rover_rates_are_the_rover_chapter(data, speed, wheel_radius, dims):
 
 
 def test_rover_steering_is_the_documents_corner_angles_with_our_sign():
-    wheels = {w.name: w for w in rover_wheels(radius_in=30.0)}
+    wheels = {w.name: w for w in rover_wheels(turning_radius=-30.0 * INCH)}
     doc = dict(zip(rover.CORNER_NAMES, rover.corner_angles(30.0), strict=True))
     for name, angle in doc.items():
         assert wheels[name].steering == pytest.approx(-angle)
@@ -196,7 +196,7 @@ def test_rover_steering_is_the_documents_corner_angles_with_our_sign():
 @given(twist=twists)
 def test_forward_after_inverse_is_the_identity_on_admissible_twists(twist):
     vx, _vy, w = twist
-    mec = mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15))
+    mec = mecanum_wheels(MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15))
     np.testing.assert_allclose(body_twist(mec, wheel_rates(mec, twist)), twist, atol=1e-9)
     dd = diff_drive_wheels(0.085, 0.018)
     np.testing.assert_allclose(body_twist(dd, wheel_rates(dd, (vx, 0, w))), (vx, 0, w),
@@ -209,7 +209,7 @@ def test_forward_after_inverse_is_the_identity_on_admissible_twists(twist):
 
 
 def test_skid_steer_odometry_is_the_diffdrive_chapters_forward_kinematics():
-    wheels = skid_steer_wheels(0.06, 0.05, 0.04)
+    wheels = skid_steer_wheels(half_track=0.06, half_wheelbase=0.05, wheel_radius=0.04)
     phi = np.array([3.0, 5.0, 2.0, 7.0])
     v, w = diffdrive.skid_steer_body_twist(*(phi * 0.04), 0.12)
     np.testing.assert_allclose(body_twist(wheels, phi), [v, 0.0, w], atol=1e-12)
@@ -218,13 +218,13 @@ def test_skid_steer_odometry_is_the_diffdrive_chapters_forward_kinematics():
 @SETTINGS
 @given(twist=twists, k=st.floats(-3, 3))
 def test_wheel_rates_are_linear_in_the_twist(twist, k):
-    wheels = rover_wheels(radius_in=-45.0)
+    wheels = rover_wheels(turning_radius=45.0 * INCH)
     np.testing.assert_allclose(wheel_rates(wheels, np.multiply(k, twist)),
                                k * wheel_rates(wheels, twist), atol=1e-9)
 
 
 def test_batches_of_twists_give_batches_of_rates():
-    wheels = mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15))
+    wheels = mecanum_wheels(MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15))
     batch = np.arange(24.0).reshape(2, 4, 3) / 10
     out = wheel_rates(wheels, batch)
     assert out.shape == (2, 4, 4)
@@ -235,8 +235,8 @@ def test_batches_of_twists_give_batches_of_rates():
 
 
 def test_a_left_turn_mirrors_a_right_turn():
-    right = wheel_rates(rover_wheels(radius_in=40.0), rover.body_twist(40.0, 10.0))
-    left = wheel_rates(rover_wheels(radius_in=-40.0), rover.body_twist(-40.0, 10.0))
+    right = wheel_rates(rover_wheels(turning_radius=-40.0 * INCH), rover.body_twist(40.0, 10.0))
+    left = wheel_rates(rover_wheels(turning_radius=40.0 * INCH), rover.body_twist(-40.0, 10.0))
     np.testing.assert_allclose(left, right[[3, 4, 5, 0, 1, 2]], atol=1e-12)
 
 
@@ -271,7 +271,7 @@ def test_sandbox_contact_rows_are_the_contact_velocities_by_hand(name):
         psi = w.heading + angle_of.get(w.name, 0.0)
         e = np.array([math.cos(psi), math.sin(psi)])
         n = np.array([math.cos(psi + math.pi / 2), math.sin(psi + math.pi / 2)])
-        r = w.radius
+        r = w.wheel_radius
         if w.kind == "swedish":
             a = psi + math.pi / 2 + w.roller_angle
             u = np.array([math.cos(a), math.sin(a)])
@@ -324,11 +324,11 @@ def _kiwi():
     [
         # (degree of mobility, steerability, manoeuvrability), Siegwart et al. section 3.3
         ("differential drive", diff_drive_wheels(0.3, 0.05), (2, 0, 2)),
-        ("mecanum", mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15)), (3, 0, 3)),
+        ("mecanum", mecanum_wheels(MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)), (3, 0, 3)),
         ("omni (kiwi)", _kiwi(), (3, 0, 3)),
         ("rover, straight", rover_wheels(), (1, 1, 2)),
-        ("rover, turning", rover_wheels(radius_in=-25.0), (1, 1, 2)),
-        ("skid steer", skid_steer_wheels(0.06, 0.05, 0.04), (1, 0, 1)),
+        ("rover, turning", rover_wheels(turning_radius=25.0 * INCH), (1, 1, 2)),
+        ("skid steer", skid_steer_wheels(half_track=0.06, half_wheelbase=0.05, wheel_radius=0.04), (1, 0, 1)),
         ("tricycle", _tricycle(), (1, 1, 2)),
         ("car", _car(), (1, 1, 2)),
         ("swerve", steer_for_twist(_swerve(), (0.3, 0.2, 0.5)), (1, 2, 3)),
@@ -350,7 +350,7 @@ def test_the_differential_drive_cannot_strafe_and_the_rover_cannot_either():
         wheels = steer_for_twist(wheels, strafe)
         assert np.abs(slip_residual(wheels, strafe)).max() == pytest.approx(0.3)
     # the mecanum vehicle can, without any residual
-    assert not np.any(slip_residual(mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15)),
+    assert not np.any(slip_residual(mecanum_wheels(MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)),
                                     (0.0, 0.3, 0.0)))
 
 
@@ -358,7 +358,7 @@ def test_the_differential_drive_cannot_strafe_and_the_rover_cannot_either():
 @given(v=speeds, omega=rates.filter(lambda w: abs(w) > 1e-3), a=lengths, b=lengths)
 def test_the_skid_steer_must_slip_to_turn(v, omega, a, b):
     """Only straight motion is admissible; a turn leaves each wheel sliding at a|omega|."""
-    wheels = skid_steer_wheels(b, a, 0.04)
+    wheels = skid_steer_wheels(half_track=b, half_wheelbase=a, wheel_radius=0.04)
     residual = slip_residual(wheels, (v, 0.0, omega))
     np.testing.assert_allclose(np.abs(residual), a * abs(omega), rtol=1e-12)
     np.testing.assert_allclose(residual, omega * np.array([a, a, -a, -a]), rtol=1e-12)
@@ -366,7 +366,7 @@ def test_the_skid_steer_must_slip_to_turn(v, omega, a, b):
 
 
 def test_mis_steered_rover_cannot_move_at_all():
-    wheels = list(rover_wheels(radius_in=30.0))
+    wheels = list(rover_wheels(turning_radius=-30.0 * INCH))
     wheels[0] = wheels[0].steered_to(wheels[0].steering + 0.05)  # LF 3 degrees off
     m = mobility(wheels)
     assert m.degree_of_mobility == 0 and m.rank_sliding == 3
@@ -385,7 +385,7 @@ def test_a_caster_trails_along_its_contact_velocity():
     wheels = steer_for_twist(diff_drive_wheels(0.2, 0.05), (-0.5, 0.0, 0.0))  # reversing
     caster = wheels[2]
     assert abs(caster.steering) == pytest.approx(math.pi)  # turned round, rolling forward
-    assert wheel_rates(wheels, (-0.5, 0.0, 0.0))[2] == pytest.approx(0.5 / caster.radius)
+    assert wheel_rates(wheels, (-0.5, 0.0, 0.0))[2] == pytest.approx(0.5 / caster.wheel_radius)
     # a wheel at the ICR keeps its steering
     (w,) = steer_for_twist([WheelConstraint("S", (0.0, 1.0), kind="steered", steering=0.4)],
                            (1.0, 0.0, 1.0))
@@ -401,7 +401,7 @@ def test_a_caster_trails_along_its_contact_velocity():
         ({"position": (0.0, math.nan)}, "position"),
         ({"position": (0.0, 1.0, 2.0)}, "position"),
         ({"heading": math.inf}, "heading"),
-        ({"radius": 0.0}, "radius"),
+        ({"wheel_radius": 0.0}, "wheel_radius"),
         ({"kind": "mecanum"}, "kind"),
         ({"kind": 3}, "kind"),
         ({"kind": "swedish", "roller_angle": 0.0}, "roller_angle"),
@@ -435,11 +435,11 @@ def test_bad_wheels_raise_value_error_naming_the_parameter(kwargs, param):
         (lambda: diff_drive_wheels(-0.1, 0.02), "track_width"),
         (lambda: diff_drive_wheels(0.1, 0.02, caster="yes"), "caster"),
         (lambda: diff_drive_wheels(0.1, 0.02, caster_offset=0.0), "caster_offset"),
-        (lambda: skid_steer_wheels(0.06, math.nan, 0.04), "half_wheelbase"),
+        (lambda: skid_steer_wheels(half_track=0.06, half_wheelbase=math.nan, wheel_radius=0.04), "half_wheelbase"),
         (lambda: mecanum_wheels((0.05, 0.2, 0.15)), "geometry"),
         (lambda: rover_wheels((7, 10, 10, 10)), "geometry"),
         (lambda: rover_wheels(wheel_radius=0), "wheel_radius"),
-        (lambda: rover_wheels(radius_in=10.0), "radius"),
+        (lambda: rover_wheels(turning_radius=-10.0 * INCH), "radius"),
         (lambda: WheelConstraint("A", (0, 0)).roller_axis, "roller_axis"),
     ],
 )

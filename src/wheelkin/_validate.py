@@ -167,3 +167,14 @@ def broadcast(**arrays: Any) -> list[np.ndarray]:
         shapes = ", ".join(f"{name} {np.shape(a)}" for name, a in arrays.items())
         raise ValueError(f"{' and '.join(arrays)} must have shapes that broadcast together, "
                          f"got {shapes}") from None
+
+
+def scalar_or_array(value: Any) -> Any:
+    """One quantity as the library returns it: a Python ``float`` for a 0-d result, the array
+    otherwise (never a 0-d array or a NumPy scalar).
+
+    >>> scalar_or_array(np.float64(2.5)), scalar_or_array(np.array([1.0]))
+    (2.5, array([1.]))
+    """
+    arr = np.asarray(value, dtype=float)
+    return float(arr) if arr.ndim == 0 else arr

@@ -36,11 +36,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
+from wheelkin.frames import Twist
 
 __all__ = [
     "AckermannAngles",
     "ArmAngle",
-    "CenterOfMassTwist",
+    "CentreOfMassTwist",
     "LinkageAngles",
     "ackermann_angles",
     "ackermann_outer_angle",
@@ -75,7 +76,7 @@ class LinkageAngles(NamedTuple):
     right: float | np.ndarray
 
 
-class CenterOfMassTwist(NamedTuple):
+class CentreOfMassTwist(NamedTuple):
     """Body twist at the centre of mass, and its side-slip angle beta (rad)."""
 
     vx: float | np.ndarray
@@ -95,6 +96,11 @@ def _out(value):
     """A 0-d array as a float, anything else unchanged."""
     arr = np.asarray(value)
     return float(arr) if arr.ndim == 0 else arr
+
+
+def _twist(columns: np.ndarray) -> Twist | np.ndarray:
+    """One twist (shape (3,)) as a Twist; a stack of them (shape (..., 3)) as the array."""
+    return Twist(*columns.tolist()) if columns.ndim == 1 else columns
 
 
 def _steer(name: str, value) -> np.ndarray:
@@ -257,7 +263,7 @@ def ackermann_angles(radius: ArrayLike, wheelbase: float, track_width: float) ->
 
 
 def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike,
-                  wheelbase: float) -> NDArray[np.float64]:
+                  wheelbase: float) -> Twist | NDArray[np.float64]:
     r"""Body twist of the rear-axle midpoint of the kinematic bicycle model.
 
     .. math:: v_x = v,\qquad v_y = 0,\qquad \omega = \frac{v\tan\delta}{L}
@@ -273,12 +279,12 @@ def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike,
 
     Returns
     -------
-    ndarray, shape (..., 3)
+    Twist, or ndarray of shape (..., 3) for array input
         ``(vx, vy, omega)`` in m/s, m/s, rad/s (body frame, REP-103).
 
     Examples
     --------
-    >>> bicycle_twist(2.0, math.pi / 4, 0.5).round(6).tolist()
+    >>> [round(c, 6) for c in bicycle_twist(2.0, math.pi / 4, 0.5)]
     [2.0, 0.0, 4.0]
     >>> bicycle_twist(1.0, 2.0, 0.5)
     Traceback (most recent call last):
@@ -289,11 +295,11 @@ def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike,
     d = _steer("steering_angle", steering_angle)
     L = V.positive("wheelbase", wheelbase)
     v, d = V.broadcast(speed=v, steering_angle=d)
-    return np.stack([v + 0.0, np.zeros_like(v), v * np.tan(d) / L + 0.0], axis=-1)
+    return _twist(np.stack([v + 0.0, np.zeros_like(v), v * np.tan(d) / L + 0.0], axis=-1))
 
 
 def tricycle_twist(front_speed: ArrayLike, steering_angle: ArrayLike,
-                   wheelbase: float) -> NDArray[np.float64]:
+                   wheelbase: float) -> Twist | NDArray[np.float64]:
     r"""Body twist of the rear-axle midpoint of a tricycle driven by its steered front wheel.
 
     The front wheel rolls at :math:`v_f` along its own direction, at angle :math:`\delta`;
@@ -315,22 +321,22 @@ def tricycle_twist(front_speed: ArrayLike, steering_angle: ArrayLike,
 
     Returns
     -------
-    ndarray, shape (..., 3)
+    Twist, or ndarray of shape (..., 3) for array input
         ``(vx, vy, omega)``.
 
     Examples
     --------
-    >>> tricycle_twist(1.0, math.pi / 2, 0.5).round(6).tolist()
-    [0.0, 0.0, 2.0]
+    >>> tricycle_twist(1.0, math.pi / 2, 0.5)
+    Twist(vx=0.0, vy=0.0, omega=2.0)
     """
     v = V.finite_array("front_speed", front_speed)
     d = V.finite_array("steering_angle", steering_angle)
     if np.any(np.abs(d) > _HALF_PI):
         raise ValueError(f"steering_angle must be in [-pi/2, pi/2] rad, got {steering_angle!r}")
     L = V.positive("wheelbase", wheelbase)
-    v, d = V.broadcast(speed=v, steering_angle=d)
+    v, d = V.broadcast(front_speed=v, steering_angle=d)
     vx = np.where(np.abs(np.abs(d) - _HALF_PI) < 1e-15, 0.0, v * np.cos(d))
-    return np.stack([vx + 0.0, np.zeros_like(v), v * np.sin(d) / L + 0.0], axis=-1)
+    return _twist(np.stack([vx + 0.0, np.zeros_like(v), v * np.sin(d) / L + 0.0], axis=-1))
 
 
 def side_slip_angle(steering_angle: ArrayLike, wheelbase: float,
@@ -366,7 +372,7 @@ def side_slip_angle(steering_angle: ArrayLike, wheelbase: float,
 
 
 def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, wheelbase: float,
-                      rear_to_com: float) -> CenterOfMassTwist:
+                      rear_to_com: float) -> CentreOfMassTwist:
     r"""Body twist at the centre of mass (:math:`l_r` ahead of the rear axle), given its speed.
 
     The velocity of the centre of mass makes the side-slip angle :math:`\beta`
@@ -391,7 +397,7 @@ def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, wheelbase: fl
 
     Returns
     -------
-    CenterOfMassTwist
+    CentreOfMassTwist
         ``(vx, vy, omega, beta)`` in m/s, m/s, rad/s, rad.
 
     Examples
@@ -406,7 +412,7 @@ def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, wheelbase: fl
     L = float(wheelbase)
     v, d, beta = V.broadcast(speed=v, steering_angle=d, side_slip=beta)
     cb = np.cos(beta)
-    return CenterOfMassTwist(_out(v * cb + 0.0), _out(v * np.sin(beta) + 0.0),
+    return CentreOfMassTwist(_out(v * cb + 0.0), _out(v * np.sin(beta) + 0.0),
                              _out(v * cb * np.tan(d) / L + 0.0), _out(beta + 0.0))
 
 

@@ -68,10 +68,12 @@ __all__ = [
     "INT32_MIN",
     "RADON_ULZER_CONSTANTS",
     "BodyTwist",
+    "BodyTwistSteps",
     "DiffDriveConstants",
     "FixedPointWheelSpeeds",
     "SkidSteerWheelSpeeds",
     "WheelSpeeds",
+    "WheelSpeedsSteps",
     "body_twist",
     "body_twist_steps",
     "c_divide",
@@ -174,6 +176,22 @@ class BodyTwist(NamedTuple):
 
     v: Any
     omega: Any
+
+
+class WheelSpeedsSteps(NamedTuple):
+    """Left and right wheel speeds in the firmware's unit, encoder steps/s (floats or
+    arrays)."""
+
+    left: Any
+    right: Any
+
+
+class BodyTwistSteps(NamedTuple):
+    """A differential drive's twist in the firmware's units: forward speed in steps/s, yaw rate
+    in mrad/s (counter-clockwise positive), floats or arrays."""
+
+    v_steps_per_s: Any
+    omega_mrad_per_s: Any
 
 
 class SkidSteerWheelSpeeds(NamedTuple):
@@ -355,7 +373,7 @@ def _firmware_constants(track_width_mm, steps_per_m) -> tuple[float, float]:
 
 def wheel_speeds_steps(
         v_steps_per_s: ArrayLike, omega_mrad_per_s: ArrayLike, track_width_mm: float,
-        steps_per_m: float) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
+        steps_per_m: float) -> WheelSpeedsSteps:
     r"""Wheel speeds in encoder steps/s from a twist in the firmware's units (exact, floats).
 
     .. math:: v_L = v - \omega \, \frac{W}{2} \, \frac{\mathrm{ENC}}{10^6}, \qquad
@@ -378,8 +396,8 @@ def wheel_speeds_steps(
 
     Returns
     -------
-    left, right : float or numpy.ndarray
-        Wheel speeds, steps/s (not rounded).
+    WheelSpeedsSteps
+        ``(left, right)`` wheel speeds, steps/s (not rounded), floats or arrays.
 
     Examples
     --------
@@ -393,12 +411,12 @@ def wheel_speeds_steps(
     v_arr, w_arr = _broadcast(v_steps_per_s=v_steps_per_s, omega_mrad_per_s=omega_mrad_per_s)
     w_mm, enc = _firmware_constants(track_width_mm, steps_per_m)
     turn = w_arr * (0.5 * w_mm * enc / 1e6)
-    return _out(v_arr - turn), _out(v_arr + turn)
+    return WheelSpeedsSteps(_out(v_arr - turn), _out(v_arr + turn))
 
 
 def body_twist_steps(
         left: ArrayLike, right: ArrayLike, track_width_mm: float,
-        steps_per_m: float) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
+        steps_per_m: float) -> BodyTwistSteps:
     r"""Twist in the firmware's units from wheel speeds in steps/s; inverse of
     :func:`wheel_speeds_steps`.
 
@@ -416,8 +434,9 @@ def body_twist_steps(
 
     Returns
     -------
-    v_steps_per_s, omega_mrad_per_s : float or numpy.ndarray
-        Forward speed of the axle midpoint (steps/s) and yaw rate (mrad/s, counter-clockwise +).
+    BodyTwistSteps
+        ``(v_steps_per_s, omega_mrad_per_s)``: forward speed of the axle midpoint (steps/s)
+        and yaw rate (mrad/s, counter-clockwise +).
 
     Examples
     --------
@@ -427,12 +446,12 @@ def body_twist_steps(
     """
     l_arr, r_arr = _broadcast(left=left, right=right)
     w_mm, enc = _firmware_constants(track_width_mm, steps_per_m)
-    return _out(0.5 * (l_arr + r_arr)), _out((r_arr - l_arr) * 1e6 / (w_mm * enc))
+    return BodyTwistSteps(_out(0.5 * (l_arr + r_arr)), _out((r_arr - l_arr) * 1e6 / (w_mm * enc)))
 
 
 def wheel_speeds_steps_as_printed(
         v_linear_steps_per_s: ArrayLike, omega_mrad_per_s: ArrayLike, track_width_mm: float,
-        steps_per_m: float) -> tuple[float | NDArray[np.float64], float | NDArray[np.float64]]:
+        steps_per_m: float) -> WheelSpeedsSteps:
     r"""The firmware README's wheel-speed formula, as printed. **Wrong**: kept to show the error.
 
     .. math:: v_{L,R} = \frac{v_{Linear}}{2} \mp
@@ -454,21 +473,21 @@ def wheel_speeds_steps_as_printed(
 
     Returns
     -------
-    left, right : float or numpy.ndarray
-        The wheel speeds the printed formula gives, steps/s.
+    WheelSpeedsSteps
+        ``(left, right)``: the wheel speeds the printed formula gives, steps/s.
 
     Examples
     --------
     Commanding 1000 steps/s straight ahead gives wheels at 500 steps/s:
 
     >>> wheel_speeds_steps_as_printed(1000, 0, 85, 8043)
-    (500.0, 500.0)
+    WheelSpeedsSteps(left=500.0, right=500.0)
     """
     v_arr, w_arr = _broadcast(v_linear_steps_per_s=v_linear_steps_per_s,
                               omega_mrad_per_s=omega_mrad_per_s)
     w_mm, enc = _firmware_constants(track_width_mm, steps_per_m)
     turn = w_arr * w_mm / (2 * 1000) * enc / 1000
-    return _out(v_arr / 2 - turn), _out(v_arr / 2 + turn)
+    return WheelSpeedsSteps(_out(v_arr / 2 - turn), _out(v_arr / 2 + turn))
 
 
 # --------------------------------------------------------------------------------------------

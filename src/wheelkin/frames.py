@@ -37,12 +37,14 @@ lab       metres; x east, y north, theta counter-     :func:`lab_pose_to_ours`,
           clockwise from +x: the same as ours         :func:`ours_to_lab_pose`
 ========  ==========================================  =========================================
 
-Scalars in, dataclass out; arrays in, arrays out
-------------------------------------------------
+Scalars in, Pose/Twist out; arrays in, arrays out
+-------------------------------------------------
 A function taking components (``x, y, theta``) returns a :class:`Pose` or :class:`Twist` when
 every component is a scalar, and an array of shape ``(..., 3)`` (columns in our order) when any
-is an array. A function taking a :class:`Pose`/:class:`Twist` returns a tuple of floats in the
-source's order; given an array of shape ``(..., 3)`` it returns an array of shape ``(..., 3)``.
+is an array. A function taking a :class:`Pose`/:class:`Twist` returns one (or the source's
+own NamedTuple: :class:`FirmwarePose`, :class:`MecanumDocPose`, :class:`MecanumDocTwist`, fields
+in the source's order); given an array of shape ``(..., 3)`` it returns an array of shape
+``(..., 3)``. Pose and Twist are NamedTuples, so they unpack (``x, y, theta = pose``).
 Bad input (NaN, infinity, a wrong shape) raises ``ValueError`` naming the parameter.
 
 >>> firmware_pose_to_ours(-100.0, 2000.0, 0.5)
@@ -54,7 +56,6 @@ Twist(vx=0.0, vy=-0.3048, omega=0.0)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
@@ -66,6 +67,10 @@ from wheelkin._kernels import arc_factors
 from wheelkin.units import FOOT, INCH, MM
 
 __all__ = [
+    "FirmwarePose",
+    "HalfTurn",
+    "MecanumDocPose",
+    "MecanumDocTwist",
     "Pose",
     "PoseRate",
     "Twist",
@@ -104,13 +109,21 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
-class Pose:
+class _PoseFields(NamedTuple):
+    x: float
+    y: float
+    theta: float
+
+
+class Pose(_PoseFields):
     """A planar pose in our world frame: position ``x``, ``y`` (m), heading ``theta`` (rad).
 
     ``theta`` is counter-clockwise from world +x. It is stored as given (not wrapped); use
-    :func:`wrap_angle` where a wrapped heading is meant.
+    :func:`wrap_angle` where a wrapped heading is meant. A NamedTuple: ``x, y, theta = pose``
+    unpacks it, ``pose.x`` names a field, ``np.asarray(pose)`` (or :meth:`as_array`) is the
+    array ``[x, y, theta]`` (use the array for arithmetic: ``pose * 2`` repeats a tuple).
 
+    >>> x, y, theta = Pose(1.0, 2.0, 0.5)
     >>> Pose(1.0, 2.0, 0.5).as_array()
     array([1. , 2. , 0.5])
     >>> Pose(1.0, float("nan"), 0.0)
@@ -119,17 +132,18 @@ class Pose:
     ValueError: y must be a finite number, got nan
     """
 
-    x: float
-    y: float
-    theta: float
+    __slots__ = ()
 
-    def __post_init__(self) -> None:
-        for name in ("x", "y", "theta"):
-            object.__setattr__(self, name, v.finite(name, getattr(self, name)))
+    def __new__(cls, x: float, y: float, theta: float) -> Pose:
+        return super().__new__(cls, v.finite("x", x), v.finite("y", y),
+                               v.finite("theta", theta))
+
+    def _replace(self, **changes: float) -> Pose:
+        return type(self)(**(self._asdict() | changes))
 
     def as_array(self) -> np.ndarray:
         """``[x, y, theta]`` as a float array of shape (3,)."""
-        return np.array([self.x, self.y, self.theta])
+        return np.array(self, dtype=float)
 
     @classmethod
     def from_array(cls, values: ArrayLike) -> Pose:
@@ -140,9 +154,17 @@ class Pose:
         return cls(*arr.tolist())
 
 
-@dataclass(frozen=True)
-class Twist:
+class _TwistFields(NamedTuple):
+    vx: float
+    vy: float
+    omega: float
+
+
+class Twist(_TwistFields):
     """A planar twist in our body frame: ``vx``, ``vy`` (m/s), ``omega`` (rad/s, CCW +).
+
+    A NamedTuple, like :class:`Pose`: ``vx, vy, omega = twist`` unpacks it, and
+    ``np.asarray(twist)`` (or :meth:`as_array`) is the array for arithmetic.
 
     >>> Twist(0.5, 0.0, 0.25).as_array()
     array([0.5 , 0.  , 0.25])
@@ -152,17 +174,18 @@ class Twist:
     ValueError: omega must be a finite number, got inf
     """
 
-    vx: float
-    vy: float
-    omega: float
+    __slots__ = ()
 
-    def __post_init__(self) -> None:
-        for name in ("vx", "vy", "omega"):
-            object.__setattr__(self, name, v.finite(name, getattr(self, name)))
+    def __new__(cls, vx: float, vy: float, omega: float) -> Twist:
+        return super().__new__(cls, v.finite("vx", vx), v.finite("vy", vy),
+                               v.finite("omega", omega))
+
+    def _replace(self, **changes: float) -> Twist:
+        return type(self)(**(self._asdict() | changes))
 
     def as_array(self) -> np.ndarray:
         """``[vx, vy, omega]`` as a float array of shape (3,)."""
-        return np.array([self.vx, self.vy, self.omega])
+        return np.array(self, dtype=float)
 
     @classmethod
     def from_array(cls, values: ArrayLike) -> Twist:
@@ -173,8 +196,53 @@ class Twist:
         return cls(*arr.tolist())
 
 
+class FirmwarePose(NamedTuple):
+    """A pose in the Radon Ulzer firmware's convention (see :func:`ours_to_firmware_pose`)."""
+
+    #: mm, to the right of the start heading.
+    X_mm: float
+    #: mm, along the start heading.
+    Y_mm: float
+    #: rad, counter-clockwise from +Y.
+    theta: float
+
+
+class MecanumDocPose(NamedTuple):
+    """A world pose in the mecanum simulator's convention (see
+    :func:`ours_to_mecanum_doc_pose`)."""
+
+    #: ft, east.
+    X_ft: float
+    #: ft, north.
+    Y_ft: float
+    #: rad, clockwise from +Y.
+    psi: float
+
+
+class MecanumDocTwist(NamedTuple):
+    """A body twist in the mecanum simulator's convention (see
+    :func:`ours_to_mecanum_doc_twist`)."""
+
+    #: ft/s, to the right.
+    Vx_ftps: float
+    #: ft/s, forward.
+    Vy_ftps: float
+    #: rad/s, counter-clockwise positive.
+    omega: float
+
+
+class HalfTurn(NamedTuple):
+    """A steering angle folded into (-pi/2, pi/2], and its rolling sign (see
+    :func:`fold_half_turn`)."""
+
+    #: rad, in (-pi/2, pi/2].
+    angle: float
+    #: +1.0, or -1.0 when the wheel was turned by half a turn (it then rolls backwards).
+    sign: float
+
+
 # --------------------------------------------------------------------------------------------
-# Helpers: scalars in -> dataclass out, arrays in -> arrays out
+# Helpers: scalars in -> Pose/Twist out, arrays in -> arrays out
 # --------------------------------------------------------------------------------------------
 
 
@@ -198,7 +266,7 @@ def _pack(cls, columns, scalar: bool):
 
 
 def _unpack(name: str, value, cls):
-    """(columns, is_dataclass) from a dataclass instance or an array (..., 3)."""
+    """(columns, is_record) from a Pose/Twist or an array (..., 3)."""
     if isinstance(value, cls):
         return list(value.as_array()), True
     if isinstance(value, Pose | Twist):
@@ -208,9 +276,9 @@ def _unpack(name: str, value, cls):
     return [arr[..., 0], arr[..., 1], arr[..., 2]], False
 
 
-def _unpack_out(columns, is_dataclass: bool):
-    if is_dataclass:
-        return tuple(float(c) for c in columns)
+def _unpack_out(columns, is_record: bool, cls):
+    if is_record:
+        return cls(*(float(c) for c in columns))
     return np.stack(columns, axis=-1)
 
 
@@ -245,7 +313,7 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
     return float(out) if out.ndim == 0 else out
 
 
-def fold_half_turn(angle: float) -> tuple[float, float]:
+def fold_half_turn(angle: float) -> HalfTurn:
     r"""A wheel's steering ``angle`` folded into :math:`(-\pi/2, \pi/2]`, and the sign its
     rolling rate takes: a wheel turned half a turn rolls the same line backwards.
 
@@ -255,17 +323,17 @@ def fold_half_turn(angle: float) -> tuple[float, float]:
     Examples
     --------
     >>> fold_half_turn(0.5)
-    (0.5, 1.0)
+    HalfTurn(angle=0.5, sign=1.0)
     >>> a, sign = fold_half_turn(math.pi - 0.5)
     >>> round(a, 12), sign
     (-0.5, -1.0)
     """
     a = math.remainder(v.finite("angle", angle), 2 * math.pi)
     if a > math.pi / 2:
-        return a - math.pi, -1.0
+        return HalfTurn(a - math.pi, -1.0)
     if a <= -math.pi / 2:
-        return a + math.pi, -1.0
-    return a, 1.0
+        return HalfTurn(a + math.pi, -1.0)
+    return HalfTurn(a, 1.0)
 
 
 def point_velocity(twist: Twist | ArrayLike, point: ArrayLike) -> NDArray[np.float64]:
@@ -303,7 +371,7 @@ def _twist_columns(name: str, twist):
     return arr[..., 0], arr[..., 1], arr[..., 2]
 
 
-def icr(twist: Twist | ArrayLike) -> tuple[float, float] | None:
+def icr(twist: Twist | ArrayLike) -> NDArray[np.float64] | None:
     r"""The instantaneous centre of rotation of a planar twist, in the body frame (m).
 
     .. math:: p_{\mathrm{ICR}} = \left(-\frac{v_y}{\omega},\; \frac{v_x}{\omega}\right)
@@ -317,8 +385,9 @@ def icr(twist: Twist | ArrayLike) -> tuple[float, float] | None:
 
     Returns
     -------
-    (float, float) or None
-        ``(x, y)`` of the ICR; ``None`` when :math:`\omega = 0` (a pure translation: the ICR is
+    numpy.ndarray, shape (2,), or None
+        ``(x, y)`` of the ICR (a point, like :func:`point_velocity`'s); ``None`` when
+        :math:`\omega = 0` (a pure translation: the ICR is
         at infinity, perpendicular to :math:`(v_x, v_y)`; at rest it is undefined). For arrays
         of twists use :func:`icr_array`.
 
@@ -327,7 +396,7 @@ def icr(twist: Twist | ArrayLike) -> tuple[float, float] | None:
     A left turn of radius 2 m (forward at 1 m/s, 0.5 rad/s): the ICR is 2 m to the left.
 
     >>> icr(Twist(1.0, 0.0, 0.5))
-    (0.0, 2.0)
+    array([0., 2.])
     >>> icr(Twist(1.0, 0.0, 0.0)) is None
     True
     """
@@ -335,7 +404,7 @@ def icr(twist: Twist | ArrayLike) -> tuple[float, float] | None:
         twist = Twist.from_array(twist)
     if twist.omega == 0.0:
         return None
-    return (_no_negative_zero(-twist.vy / twist.omega), _no_negative_zero(twist.vx / twist.omega))
+    return np.array([-twist.vy / twist.omega, twist.vx / twist.omega]) + 0.0
 
 
 def icr_array(twists: ArrayLike) -> np.ndarray:
@@ -807,8 +876,7 @@ def mecanum_doc_twist_to_ours(Vx_ftps: ArrayLike, Vy_ftps: ArrayLike,
                          w), scalar)
 
 
-def ours_to_mecanum_doc_twist(
-        twist: Twist | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
+def ours_to_mecanum_doc_twist(twist: Twist | ArrayLike) -> MecanumDocTwist | NDArray[np.float64]:
     r"""Our twist (SI) as the mecanum simulator's ``(Vx_ftps, Vy_ftps, omega)``.
 
     .. math:: V_x = -v_y / 0.3048,\quad V_y = v_x / 0.3048,\quad \omega_{doc} = \omega
@@ -819,16 +887,17 @@ def ours_to_mecanum_doc_twist(
 
     Returns
     -------
-    tuple of float (for a Twist) or numpy.ndarray, shape (..., 3)
+    MecanumDocTwist (for a Twist) or numpy.ndarray, shape (..., 3)
 
     Examples
     --------
     >>> ours_to_mecanum_doc_twist(Twist(3.048, -0.6096, 0.5))
-    (2.0, 10.0, 0.5)
+    MecanumDocTwist(Vx_ftps=2.0, Vy_ftps=10.0, omega=0.5)
     """
     (vx, vy, w), is_twist = _unpack("twist", twist, Twist)
     return _unpack_out([_no_negative_zero(-np.asarray(vy) / FOOT),
-                        _no_negative_zero(np.asarray(vx) / FOOT), np.asarray(w)], is_twist)
+                        _no_negative_zero(np.asarray(vx) / FOOT), np.asarray(w)], is_twist,
+                       MecanumDocTwist)
 
 
 def mecanum_doc_heading_to_ours(psi: ArrayLike) -> float | NDArray[np.float64]:
@@ -884,18 +953,17 @@ def mecanum_doc_pose_to_ours(X_ft: ArrayLike, Y_ft: ArrayLike,
                  scalar)
 
 
-def ours_to_mecanum_doc_pose(
-        pose: Pose | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
+def ours_to_mecanum_doc_pose(pose: Pose | ArrayLike) -> MecanumDocPose | NDArray[np.float64]:
     """Our world pose as the mecanum simulator's ``(X_ft, Y_ft, psi)`` (psi clockwise from +Y).
 
     Examples
     --------
     >>> ours_to_mecanum_doc_pose(Pose(3.048, -1.524, 0.0))
-    (10.0, -5.0, 1.5707963267948966)
+    MecanumDocPose(X_ft=10.0, Y_ft=-5.0, psi=1.5707963267948966)
     """
     (x, y, th), is_pose = _unpack("pose", pose, Pose)
     return _unpack_out([np.asarray(x) / FOOT, np.asarray(y) / FOOT,
-                        np.asarray(ours_to_mecanum_doc_heading(th))], is_pose)
+                        np.asarray(ours_to_mecanum_doc_heading(th))], is_pose, MecanumDocPose)
 
 
 # --------------------------------------------------------------------------------------------
@@ -936,8 +1004,7 @@ def firmware_pose_to_ours(X_mm: ArrayLike, Y_mm: ArrayLike,
     return _pack(Pose, (y_fw * MM, _no_negative_zero(-x_fw * MM), th), scalar)
 
 
-def ours_to_firmware_pose(
-        pose: Pose | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
+def ours_to_firmware_pose(pose: Pose | ArrayLike) -> FirmwarePose | NDArray[np.float64]:
     r"""Our pose as the Radon Ulzer firmware's ``(X_mm, Y_mm, theta)``.
 
     .. math:: X = -1000\, y,\quad Y = 1000\, x,\quad \theta_{fw} = \theta
@@ -945,11 +1012,11 @@ def ours_to_firmware_pose(
     Examples
     --------
     >>> ours_to_firmware_pose(Pose(2.0, 0.1, 0.5))
-    (-100.0, 2000.0, 0.5)
+    FirmwarePose(X_mm=-100.0, Y_mm=2000.0, theta=0.5)
     """
     (x, y, th), is_pose = _unpack("pose", pose, Pose)
     return _unpack_out([_no_negative_zero(-np.asarray(y) / MM), np.asarray(x) / MM,
-                        np.asarray(th)], is_pose)
+                        np.asarray(th)], is_pose, FirmwarePose)
 
 
 # --------------------------------------------------------------------------------------------
@@ -974,13 +1041,13 @@ def lab_pose_to_ours(x: ArrayLike, y: ArrayLike, theta: ArrayLike) -> Pose | NDA
     return _pack(Pose, (x_lab, y_lab, th), scalar)
 
 
-def ours_to_lab_pose(pose: Pose | ArrayLike) -> tuple[float, float, float] | NDArray[np.float64]:
+def ours_to_lab_pose(pose: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     """Our pose as the Webots lab's ``(x, y, theta)``: the identity, validated.
 
     Examples
     --------
     >>> ours_to_lab_pose(Pose(1.5, -1.5, 0.25))
-    (1.5, -1.5, 0.25)
+    Pose(x=1.5, y=-1.5, theta=0.25)
     """
     (x, y, th), is_pose = _unpack("pose", pose, Pose)
-    return _unpack_out([np.asarray(x), np.asarray(y), np.asarray(th)], is_pose)
+    return _unpack_out([np.asarray(x), np.asarray(y), np.asarray(th)], is_pose, Pose)

@@ -54,7 +54,7 @@ from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _kernels
 from wheelkin import _validate as v
@@ -97,40 +97,43 @@ FIGHTING_PATTERN = np.array([1.0, 1.0, -1.0, -1.0])
 DOCUMENT_MAX_SPEED = 15.0 * FOOT
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class MecanumGeometry:
     r"""Dimensions of a four-wheel mecanum vehicle (m, rad), validated on construction.
 
+    Keyword-only, like every set of three vehicle lengths in the library (a port cannot
+    swap two of them silently); the fields come front-to-back, side-to-side, wheel radius.
+
     Parameters
     ----------
-    wheel_radius : float
-        :math:`r_w`, m, > 0.
     half_wheelbase : float
         :math:`a`, centre to the front (and rear) axle along x, m, > 0.
     half_track : float
         :math:`b`, centre to each wheel's mid-plane along y, m, > 0.
+    wheel_radius : float
+        :math:`r_w`, m, > 0.
     roller_angle : float
         :math:`\gamma`, angle between a roller's axis and the wheel's axle, rad, in
         (0, pi/2); default pi/4.
 
     Examples
     --------
-    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> round(g.k, 6)
     0.35
-    >>> MecanumGeometry(0.05, -0.2, 0.15)
+    >>> MecanumGeometry(wheel_radius=0.05, half_wheelbase=-0.2, half_track=0.15)
     Traceback (most recent call last):
     ...
     ValueError: half_wheelbase must be a finite number > 0, got -0.2
     """
 
-    wheel_radius: float
     half_wheelbase: float
     half_track: float
+    wheel_radius: float
     roller_angle: float = math.pi / 4
 
     def __post_init__(self) -> None:
-        for name in ("wheel_radius", "half_wheelbase", "half_track"):
+        for name in ("half_wheelbase", "half_track", "wheel_radius"):
             object.__setattr__(self, name, v.positive(name, getattr(self, name)))
         gamma = v.finite("roller_angle", self.roller_angle)
         if not 0.0 < gamma < math.pi / 2:
@@ -153,7 +156,7 @@ class MecanumGeometry:
 #: The vehicle the chapter uses (our choice; the document gives no dimensions): 6-inch wheels
 #: (r_w = 3 in), axles 1 ft ahead of and behind the centre, wheels 9 in either side of it.
 EXAMPLE_GEOMETRY = MecanumGeometry(
-    wheel_radius=0.25 * FOOT, half_wheelbase=1.0 * FOOT, half_track=0.75 * FOOT
+    half_wheelbase=1.0 * FOOT, half_track=0.75 * FOOT, wheel_radius=0.25 * FOOT
 )
 
 
@@ -191,7 +194,7 @@ def inverse_matrix(geometry: MecanumGeometry) -> np.ndarray:
 
     Examples
     --------
-    >>> inverse_matrix(MecanumGeometry(0.5, 0.2, 0.3))
+    >>> inverse_matrix(MecanumGeometry(wheel_radius=0.5, half_wheelbase=0.2, half_track=0.3))
     array([[ 2., -2., -1.],
            [ 2.,  2.,  1.],
            [ 2.,  2., -1.],
@@ -222,7 +225,7 @@ def forward_matrix(geometry: MecanumGeometry) -> np.ndarray:
 
     Examples
     --------
-    >>> g = MecanumGeometry(0.5, 0.2, 0.3)
+    >>> g = MecanumGeometry(wheel_radius=0.5, half_wheelbase=0.2, half_track=0.3)
     >>> forward_matrix(g)
     array([[ 0.125,  0.125,  0.125,  0.125],
            [-0.125,  0.125,  0.125, -0.125],
@@ -277,7 +280,7 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     --------
     Strafe left at 1 m/s on wheels of radius 0.05 m:
 
-    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> inverse_kinematics(0.0, 1.0, 0.0, g)
     array([-20.,  20.,  20., -20.])
     >>> inverse_kinematics([1.0, 0.0], 0.0, [0.0, 1.0], g)
@@ -332,7 +335,7 @@ def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.
 
     Examples
     --------
-    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> forward_kinematics([-20.0, 20.0, 20.0, -20.0], g)
     array([0., 1., 0.])
     >>> forward_kinematics([10.0, 10.0, -10.0, -10.0], g)  # the wheels fight: no motion
@@ -343,7 +346,7 @@ def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.
     return rates @ forward_matrix(g).T
 
 
-def fighting_component(wheel_rates: ArrayLike) -> np.ndarray:
+def fighting_component(wheel_rates: ArrayLike) -> float | NDArray[np.float64]:
     r"""How much of the wheel rates is the no-motion pattern (+1, +1, -1, -1), rad/s.
 
     Any four rates split uniquely into a part that moves the vehicle and
@@ -361,19 +364,19 @@ def fighting_component(wheel_rates: ArrayLike) -> np.ndarray:
 
     Returns
     -------
-    numpy.ndarray, shape (...)
+    float, or numpy.ndarray of shape (...) for shape (..., 4)
 
     Examples
     --------
     >>> fighting_component([12.0, 10.0, -8.0, -10.0])
-    array(10.)
+    10.0
     """
     rates = v.shaped("wheel_rates", wheel_rates, (4,))
-    return np.asarray(rates @ FIGHTING_PATTERN / 4.0)
+    return v.scalar_or_array(rates @ FIGHTING_PATTERN / 4.0)
 
 
 def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
-                  geometry: MecanumGeometry) -> np.ndarray:
+                  geometry: MecanumGeometry) -> float | NDArray[np.float64]:
     r"""The fastest wheel's rim speed :math:`r_w\max_i|\varphi_i|`, m/s, for a body twist.
 
     Every sign combination of the :math:`v_y` and :math:`\omega` terms occurs on one of the
@@ -385,18 +388,18 @@ def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
 
     Examples
     --------
-    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
-    >>> float(max_rim_speed(1.0, 1.0, 0.0, g))  # diagonal: body speed 1.414 m/s
+    >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
+    >>> max_rim_speed(1.0, 1.0, 0.0, g)  # diagonal: body speed 1.414 m/s
     2.0
     """
     g = _geometry(geometry)
     vx_a, vy_a, w_a = _broadcast(vx=v.finite_array("vx", vx), vy=v.finite_array("vy", vy),
                                  omega=v.finite_array("omega", omega))
-    return np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k
+    return v.scalar_or_array(np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k)
 
 
 def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: float = math.pi / 4,
-               gravity: float = 9.81) -> np.ndarray:
+               gravity: float = 9.81) -> float | NDArray[np.float64]:
     r"""Share of the tyres' grip that a body acceleration needs (above 1: the wheels slip).
 
     A mecanum wheel can push on the floor only along its floor roller's axis
@@ -427,14 +430,14 @@ def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: 
 
     Returns
     -------
-    numpy.ndarray
-        The grip usage :math:`u` (dimensionless).
+    float or numpy.ndarray
+        The grip usage :math:`u` (dimensionless), an array for array input.
 
     Examples
     --------
-    >>> round(float(grip_usage(0.0, 5.0, 0.8)), 4)  # sideways, 5 m/s^2 on mu = 0.8
+    >>> round(grip_usage(0.0, 5.0, 0.8), 4)  # sideways, 5 m/s^2 on mu = 0.8
     0.901
-    >>> round(float(grip_usage(3.0, 3.0, 0.8)), 4)  # diagonal, 4.24 m/s^2
+    >>> round(grip_usage(3.0, 3.0, 0.8), 4)  # diagonal, 4.24 m/s^2
     1.0812
     """
     ax_a, ay_a = _broadcast(accel_x=v.finite_array("accel_x", accel_x),
@@ -446,13 +449,14 @@ def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: 
     g = v.positive("gravity", gravity)
     with np.errstate(all="ignore"):
         out = (np.abs(ax_a) / math.sin(gamma) + np.abs(ay_a) / math.cos(gamma)) / (mu_f * g)
-    return v.finite_result("accel_x, accel_y, mu and roller_angle", out)
+    return v.scalar_or_array(v.finite_result("accel_x, accel_y, mu and roller_angle", out))
 
 
 class SpeedLimit(NamedTuple):
     """Result of :func:`limit_speed`: the twist to execute, its scale factor, and why."""
 
-    twist: tuple[float, float, float]
+    #: The twist to execute (m/s, m/s, rad/s).
+    twist: Twist
     #: 1.0 within the limit; 0 < scale < 1 when scaled; 0.0 when refused.
     scale: float
     reason: str
@@ -494,10 +498,10 @@ def limit_speed(twist: Twist | ArrayLike, max_speed: float, geometry: MecanumGeo
     --------
     >>> out = limit_speed((6.0, 0.0, 0.0), 4.572)
     >>> round(out.scale, 4), out.twist
-    (0.762, (4.572, 0.0, 0.0))
+    (0.762, Twist(vx=4.572, vy=0.0, omega=0.0))
     >>> print(out.reason)
     body speed 6.000 m/s exceeds the limit 4.572 m/s: scaled by 0.762 (same path, slower)
-    >>> g = MecanumGeometry(0.05, 0.2, 0.15)
+    >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> print(limit_speed((0.0, 0.0, 20.0), 4.572, g, refuse=True).reason)
     fastest wheel (FL) rim speed 7.000 m/s exceeds the limit 4.572 m/s: refused (not driven)
     """
@@ -518,13 +522,13 @@ def limit_speed(twist: Twist | ArrayLike, max_speed: float, geometry: MecanumGeo
     what, speed = max(checks, key=lambda c: c[1])
     if speed <= vmax:
         names = " and ".join(c[0] for c in checks)
-        return SpeedLimit((vx, vy, w), 1.0,
+        return SpeedLimit(Twist(vx, vy, w), 1.0,
                           f"within the limit: {names} {speed:.3f} m/s <= {vmax:.3f} m/s")
     head = f"{what} {speed:.3f} m/s exceeds the limit {vmax:.3f} m/s"
     if refuse:
-        return SpeedLimit((0.0, 0.0, 0.0), 0.0, f"{head}: refused (not driven)")
+        return SpeedLimit(Twist(0.0, 0.0, 0.0), 0.0, f"{head}: refused (not driven)")
     s = vmax / speed
-    return SpeedLimit((vx * s, vy * s, w * s), s,
+    return SpeedLimit(Twist(vx * s, vy * s, w * s), s,
                       f"{head}: scaled by {s:.3f} (same path, slower)")
 
 
@@ -558,7 +562,7 @@ def desaturate(wheel_rates: ArrayLike, max_rate: float) -> np.ndarray:
     return _kernels.desaturate(rates, v.positive("max_rate", max_rate))
 
 
-def circle_speed(radius: ArrayLike, lap_time: ArrayLike) -> np.ndarray:
+def circle_speed(radius: ArrayLike, lap_time: ArrayLike) -> float | NDArray[np.float64]:
     r"""Speed along a circle driven once in ``lap_time``: :math:`v = 2\pi|R|/T`, m/s.
 
     Parameters
@@ -570,11 +574,11 @@ def circle_speed(radius: ArrayLike, lap_time: ArrayLike) -> np.ndarray:
 
     Examples
     --------
-    >>> round(float(circle_speed(1.0, 2 * np.pi)), 12)
+    >>> round(circle_speed(1.0, 2 * np.pi), 12)
     1.0
     """
     r_a, t_a = _circle_args(radius, lap_time)
-    return 2.0 * np.pi * np.abs(r_a) / t_a
+    return v.scalar_or_array(2.0 * np.pi * np.abs(r_a) / t_a)
 
 
 def _circle_args(radius, lap_time) -> tuple[np.ndarray, np.ndarray]:
@@ -592,7 +596,7 @@ def _circle_args(radius, lap_time) -> tuple[np.ndarray, np.ndarray]:
 
 
 def circle_twist(radius: ArrayLike, lap_time: ArrayLike, t: ArrayLike = 0.0, *,
-                 heading: str = "rotating") -> np.ndarray:
+                 heading: str = "rotating") -> Twist | NDArray[np.float64]:
     r"""Body twist that drives a circle of radius :math:`R` once every :math:`T` seconds.
 
     The vehicle starts at the origin facing +x, moving along +x, with the centre of the
@@ -617,15 +621,16 @@ def circle_twist(radius: ArrayLike, lap_time: ArrayLike, t: ArrayLike = 0.0, *,
 
     Returns
     -------
-    numpy.ndarray, shape (..., 3)
+    Twist, or numpy.ndarray of shape (..., 3) for array input
         (vx m/s, vy m/s, omega rad/s), body frame.
 
     Examples
     --------
     >>> circle_twist(2.0, 4 * np.pi)
-    array([1. , 0. , 0.5])
-    >>> np.round(circle_twist(2.0, 4 * np.pi, t=np.pi, heading="held"), 12)
-    array([0., 1., 0.])
+    Twist(vx=1.0, vy=0.0, omega=0.5)
+    >>> np.round(circle_twist(2.0, 4 * np.pi, t=[0.0, np.pi], heading="held"), 12)
+    array([[1., 0., 0.],
+           [0., 1., 0.]])
     """
     v.choice("heading", heading, ("rotating", "held"))
     r_a, t_a = _circle_args(radius, lap_time)
@@ -634,14 +639,16 @@ def circle_twist(radius: ArrayLike, lap_time: ArrayLike, t: ArrayLike = 0.0, *,
     speed = 2.0 * np.pi * np.abs(r_a) / t_a
     rate = np.sign(r_a) * 2.0 * np.pi / t_a
     if heading == "rotating":
-        return np.stack([speed, np.zeros_like(speed), rate], axis=-1)
-    angle = rate * t_arr
-    return np.stack([speed * np.cos(angle), speed * np.sin(angle), np.zeros_like(speed)],
-                    axis=-1)
+        out = np.stack([speed, np.zeros_like(speed), rate], axis=-1)
+    else:
+        angle = rate * t_arr
+        out = np.stack([speed * np.cos(angle), speed * np.sin(angle), np.zeros_like(speed)],
+                       axis=-1) + 0.0
+    return Twist(*out.tolist()) if out.ndim == 1 else out
 
 
 def go_to_point_twist(pose: Pose | ArrayLike, goal: Pose | ArrayLike, speed: float,
-                      max_omega: float, dt: float | None = None) -> np.ndarray:
+                      max_omega: float, dt: float | None = None) -> Twist | NDArray[np.float64]:
     r"""Body twist that drives straight to ``goal`` while turning to its heading.
 
     "Where am I" is ``pose`` :math:`(x, y, \theta)`, "where am I going" is ``goal``
@@ -685,7 +692,7 @@ def go_to_point_twist(pose: Pose | ArrayLike, goal: Pose | ArrayLike, speed: flo
 
     Returns
     -------
-    numpy.ndarray, shape (..., 3)
+    Twist (for two Poses) or numpy.ndarray, shape (..., 3)
         (vx m/s, vy m/s, omega rad/s), body frame.
 
     Examples
@@ -723,5 +730,8 @@ def go_to_point_twist(pose: Pose | ArrayLike, goal: Pose | ArrayLike, speed: flo
         ex, ey = f * bx, f * by
         out = np.stack([(a * ex + b * ey) / norm / step, (-b * ex + a * ey) / norm / step,
                         phi / step], axis=-1)
-    return np.where(arrived[..., None], 0.0, out)
+    out = np.where(arrived[..., None], 0.0, out) + 0.0
+    if isinstance(pose, Pose) and isinstance(goal, Pose):
+        return Twist(*out.tolist())
+    return out
 

@@ -72,6 +72,7 @@ __all__ = [
     "FIRMWARE_TWO_PI_MRAD",
     "METHODS",
     "SERIES_THRESHOLD",
+    "BodyIncrements",
     "BodyMotion",
     "body_increments",
     "body_motion",
@@ -132,8 +133,17 @@ def _whole(name: str, arr: np.ndarray) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 # the kinematics of one update
 
+class BodyIncrements(NamedTuple):
+    r"""The motion of the mid-point between the wheels in each update, in the firmware's
+    units: travel ``distance_mm`` :math:`\Delta s` (mm, positive forward) and heading change
+    ``dtheta`` :math:`\Delta\theta` (rad, counter-clockwise positive), arrays of shape (N,)."""
+
+    distance_mm: np.ndarray
+    dtheta: np.ndarray
+
+
 def body_increments(increments: ArrayLike, steps_per_mm: float,
-                    track_width_mm: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+                    track_width_mm: float) -> BodyIncrements:
     r"""Travel of the mid-point and change of heading in each update, from encoder increments.
 
     .. math::
@@ -153,8 +163,9 @@ def body_increments(increments: ArrayLike, steps_per_mm: float,
 
     Returns
     -------
-    distance_mm, dtheta_rad : numpy.ndarray, shape (N,)
-        :math:`\Delta s` (mm, positive forward) and :math:`\Delta\theta` (rad,
+    BodyIncrements
+        ``(distance_mm, dtheta)``, arrays of shape (N,): :math:`\Delta s` (mm, positive
+        forward) and :math:`\Delta\theta` (rad,
         counter-clockwise positive).
 
     Examples
@@ -170,7 +181,7 @@ def body_increments(increments: ArrayLike, steps_per_mm: float,
     k = v.positive("steps_per_mm", steps_per_mm)
     w = v.positive("track_width_mm", track_width_mm)
     left, right = inc[:, 0], inc[:, 1]
-    return (left + right) / (2.0 * k), (right - left) / (k * w)
+    return BodyIncrements((left + right) / (2.0 * k), (right - left) / (k * w))
 
 
 def chord_factor(dtheta: ArrayLike) -> float | NDArray[np.float64]:

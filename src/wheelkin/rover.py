@@ -73,6 +73,7 @@ __all__ = [
     "WHEEL_NAMES",
     "RoverCommand",
     "RoverGeometry",
+    "SandboxCommand",
     "body_twist",
     "centre_speed",
     "command_to_radius",
@@ -428,7 +429,7 @@ def corner_angles(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
 
 def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
                  straight_threshold: float = STRAIGHT_THRESHOLD, *,
-                 max_corner_angle: float = HARD_STOP) -> np.ndarray:
+                 max_corner_angle: float = HARD_STOP) -> float | NDArray[np.float64]:
     r"""Speed of the body centre (the "middle of the rover") when the outer middle wheel gets
     ``speed``.
 
@@ -441,9 +442,9 @@ def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
 
     Examples
     --------
-    >>> round(float(centre_speed(30.0, 100.0)), 2)
+    >>> round(centre_speed(30.0, 100.0), 2)
     74.86
-    >>> float(centre_speed(np.inf, 100.0))
+    >>> centre_speed(np.inf, 100.0)
     100.0
     """
     g = _geometry(geometry)
@@ -453,7 +454,7 @@ def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
     r, x = _validate.broadcast(radius=r, speed=x)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0, np.abs(r))
-    return x * np.where(straight, 1.0, rr / (rr + g.d4))
+    return _validate.scalar_or_array(x * np.where(straight, 1.0, rr / (rr + g.d4)))
 
 
 def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
@@ -585,21 +586,29 @@ def body_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry = O
     return frames.rover_twist(r, v)
 
 
+class SandboxCommand(NamedTuple):
+    """What :func:`sandbox_commands` gives the sandbox's rover: wheel rates and steering."""
+
+    #: rad/s, wheels LF, LM, LB, RF, RM, RB, shape (6,).
+    rates: np.ndarray
+    #: rad, corners LF, RF, LB, RB, REP-103 sign (positive to the left), shape (4,).
+    steering: np.ndarray
+
+
 def sandbox_commands(radius: float, speed_in_per_s: float, wheel_radius_in: float,
                      geometry: RoverGeometry = OSR_GEOMETRY,
                      straight_threshold: float = STRAIGHT_THRESHOLD, *,
-                     max_corner_angle: float = HARD_STOP) -> tuple[np.ndarray, np.ndarray]:
+                     max_corner_angle: float = HARD_STOP) -> SandboxCommand:
     """Wheel rates and steering angles for ``wheelkin.sandbox.rover``, from a command in
     the document's convention.
 
     Returns
     -------
-    rates : ndarray, shape (6,)
-        rad/s, wheels LF, LM, LB, RF, RM, RB: ``V_i / r_w`` (:func:`wheel_speeds` in in/s
-        divided by the wheel radius in inches).
-    steering : ndarray, shape (4,)
-        rad, corners LF, RF, LB, RB, in **REP-103** sign (positive = turned counter-clockwise,
-        to the left): the negative of :func:`corner_angles`.
+    SandboxCommand
+        ``rates`` (rad/s, shape (6,), wheels LF, LM, LB, RF, RM, RB): ``V_i / r_w``,
+        :func:`wheel_speeds` in in/s divided by the wheel radius in inches; ``steering``
+        (rad, shape (4,), corners LF, RF, LB, RB) in **REP-103** sign (positive = turned
+        counter-clockwise, to the left): the negative of :func:`corner_angles`.
 
     Examples
     --------
@@ -615,7 +624,7 @@ def sandbox_commands(radius: float, speed_in_per_s: float, wheel_radius_in: floa
     geometry = _geometry(geometry).in_unit("in")  # the command is in inches
     speeds = wheel_speeds(r, x, geometry, straight_threshold, max_corner_angle=max_corner_angle)
     angles = corner_angles(r, geometry, straight_threshold, max_corner_angle=max_corner_angle)
-    return speeds / w, -angles
+    return SandboxCommand(speeds / w, -angles)
 
 
 # --------------------------------------------------------------------------------------------

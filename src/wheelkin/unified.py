@@ -143,7 +143,7 @@ class WheelConstraint:
         Contact point :math:`(x_i, y_i)`, m.
     heading : float
         :math:`\psi_i^0`, angle of the rolling direction at zero steering, rad (finite).
-    radius : float
+    wheel_radius : float
         :math:`r_w`, m (> 0).
     kind : {"fixed", "steered", "swedish", "caster"}
     roller_angle : float
@@ -155,7 +155,7 @@ class WheelConstraint:
 
     Examples
     --------
-    >>> w = WheelConstraint("FL", (0.2, 0.15), radius=0.05, kind="swedish",
+    >>> w = WheelConstraint("FL", (0.2, 0.15), wheel_radius=0.05, kind="swedish",
     ...                     roller_angle=math.pi / 4)
     >>> np.round(w.roller_axis, 4)  # n turned by +45 degrees
     array([-0.7071,  0.7071])
@@ -168,7 +168,7 @@ class WheelConstraint:
     name: str
     position: tuple[float, float]
     heading: float = 0.0
-    radius: float = 0.05
+    wheel_radius: float = 0.05
     kind: str = "fixed"
     roller_angle: float = 0.0
     steering: float = 0.0
@@ -181,7 +181,7 @@ class WheelConstraint:
             raise ValueError(f"position must be one point (x, y), got shape {p.shape}")
         object.__setattr__(self, "position", (float(p[0]), float(p[1])))
         object.__setattr__(self, "heading", v.finite("heading", self.heading))
-        object.__setattr__(self, "radius", v.positive("radius", self.radius))
+        object.__setattr__(self, "wheel_radius", v.positive("wheel_radius", self.wheel_radius))
         if not isinstance(self.kind, str):
             raise ValueError(f"kind must be one of {', '.join(map(repr, WHEEL_KINDS))}; "
                              f"got {self.kind!r}")
@@ -405,12 +405,15 @@ def sliding_matrix(wheels: Sequence[WheelConstraint]) -> np.ndarray:
 
     Examples
     --------
-    >>> sliding_matrix(skid_steer_wheels(0.06, 0.05, 0.04))  # rows FL, FR, RL, RR
+    >>> skid = skid_steer_wheels(half_wheelbase=0.05, half_track=0.06,
+    ...                   wheel_radius=0.04)
+    >>> sliding_matrix(skid)  # rows FL, FR, RL, RR
     array([[ 0.  ,  1.  ,  0.05],
            [ 0.  ,  1.  ,  0.05],
            [ 0.  ,  1.  , -0.05],
            [ 0.  ,  1.  , -0.05]])
-    >>> sliding_matrix(mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15))).shape
+    >>> geometry = MecanumGeometry(half_wheelbase=0.2, half_track=0.15, wheel_radius=0.05)
+    >>> sliding_matrix(mecanum_wheels(geometry)).shape
     (0, 3)
     """
     rows = [sliding_row(w) for w in _wheels(wheels) if w.kind in ("fixed", "steered")]
@@ -476,7 +479,8 @@ def wheel_rates(wheels: Sequence[WheelConstraint], twist: Twist | npt.ArrayLike,
     --------
     The mecanum strafe of :func:`wheelkin.mecanum.inverse_kinematics`, FL, FR, RL, RR:
 
-    >>> wheel_rates(mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15)), (0.0, 1.0, 0.0))
+    >>> geometry = MecanumGeometry(half_wheelbase=0.2, half_track=0.15, wheel_radius=0.05)
+    >>> wheel_rates(mecanum_wheels(geometry), (0.0, 1.0, 0.0))
     array([-20.,  20.,  20., -20.])
     """
     w = _wheels(wheels)
@@ -487,7 +491,7 @@ def wheel_rates(wheels: Sequence[WheelConstraint], twist: Twist | npt.ArrayLike,
             raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, got "
                              f"shape {c.shape}")
         xi = np.stack(shift_twist(xi[..., 0], xi[..., 1], xi[..., 2], c[0], c[1]), axis=-1)
-    radii = np.array([wh.radius for wh in w])
+    radii = np.array([wh.wheel_radius for wh in w])
     return (xi @ rolling_matrix(w).T) / radii
 
 
@@ -515,7 +519,9 @@ def slip_residual(wheels: Sequence[WheelConstraint],
     --------
     A skid steer spinning on the spot at 1 rad/s: every wheel slides sideways at a = 0.05 m/s.
 
-    >>> slip_residual(skid_steer_wheels(0.06, 0.05, 0.04), (0.0, 0.0, 1.0))
+    >>> skid = skid_steer_wheels(half_wheelbase=0.05, half_track=0.06,
+    ...                   wheel_radius=0.04)
+    >>> slip_residual(skid, (0.0, 0.0, 1.0))
     array([ 0.05,  0.05, -0.05, -0.05])
     """
     w = _wheels(wheels)
@@ -561,7 +567,7 @@ def body_twist(wheels: Sequence[WheelConstraint], rates: npt.ArrayLike) -> np.nd
     if not measured:
         raise ValueError("wheels must include at least one wheel that is not a caster")
     J = rolling_matrix([w[i] for i in measured])
-    radii = np.array([w[i].radius for i in measured])
+    radii = np.array([w[i].wheel_radius for i in measured])
     pinv = np.linalg.pinv(J, rcond=RANK_TOLERANCE)
     return (phi[..., measured] * radii) @ pinv.T + 0.0
 
@@ -678,11 +684,14 @@ def mobility(wheels: Sequence[WheelConstraint]) -> Mobility:
 
     Examples
     --------
-    >>> mobility(mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15)))[:3]
+    >>> geometry = MecanumGeometry(half_wheelbase=0.2, half_track=0.15, wheel_radius=0.05)
+    >>> mobility(mecanum_wheels(geometry))[:3]
     (3, 0, 3)
     >>> mobility(rover_wheels())[:3]   # like a car: one motion, one steering freedom
     (1, 1, 2)
-    >>> mobility(skid_steer_wheels(0.06, 0.05, 0.04))[:3]   # straight ahead only
+    >>> skid = skid_steer_wheels(half_wheelbase=0.05, half_track=0.06,
+    ...                   wheel_radius=0.04)
+    >>> mobility(skid)[:3]   # straight ahead only
     (1, 0, 1)
     """
     w = _wheels(wheels)
@@ -715,7 +724,9 @@ def admissible_twists(wheels: Sequence[WheelConstraint]) -> np.ndarray:
     array([[1., 0.],
            [0., 0.],
            [0., 1.]])
-    >>> admissible_twists(skid_steer_wheels(0.06, 0.05, 0.04)).round(12).T + 0.0
+    >>> skid = skid_steer_wheels(half_wheelbase=0.05, half_track=0.06,
+    ...                   wheel_radius=0.04)
+    >>> admissible_twists(skid).round(12).T + 0.0
     array([[1., 0., 0.]])
     """
     w = _wheels(wheels)
@@ -793,15 +804,18 @@ def diff_drive_wheels(track_width: float, wheel_radius: float, *, caster: bool =
     return tuple(wheels)
 
 
-def skid_steer_wheels(half_track: float, half_wheelbase: float,
+def skid_steer_wheels(*, half_wheelbase: float, half_track: float,
                       wheel_radius: float) -> tuple[WheelConstraint, ...]:
     r"""A four-wheel skid steer: fixed wheels FL :math:`(a, b)`, FR :math:`(a, -b)`, RL
     :math:`(-a, b)`, RR :math:`(-a, -b)`, :math:`a` = half wheelbase, :math:`b` = half track
-    (m), all rolling along x.
+    (m), all rolling along x. Keyword-only, like
+    :class:`~wheelkin.mecanum.MecanumGeometry`.
 
     Examples
     --------
-    >>> [w.position for w in skid_steer_wheels(0.06, 0.05, 0.04)]
+    >>> skid = skid_steer_wheels(half_wheelbase=0.05, half_track=0.06,
+    ...                   wheel_radius=0.04)
+    >>> [w.position for w in skid]
     [(0.05, 0.06), (0.05, -0.06), (-0.05, 0.06), (-0.05, -0.06)]
     """
     b = v.positive("half_track", half_track)
@@ -823,7 +837,8 @@ def mecanum_wheels(geometry: MecanumGeometry) -> tuple[WheelConstraint, ...]:
 
     Examples
     --------
-    >>> wheels = mecanum_wheels(MecanumGeometry(0.05, 0.2, 0.15))
+    >>> geometry = MecanumGeometry(half_wheelbase=0.2, half_track=0.15, wheel_radius=0.05)
+    >>> wheels = mecanum_wheels(geometry)
     >>> [round(math.degrees(w.roller_angle)) for w in wheels]
     [45, -45, -45, 45]
     """
@@ -837,14 +852,14 @@ def mecanum_wheels(geometry: MecanumGeometry) -> tuple[WheelConstraint, ...]:
 
 
 def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: float = 0.06,
-                 radius_in: float = math.inf) -> tuple[WheelConstraint, ...]:
-    r"""The six-wheel rover of :class:`wheelkin.rover.RoverGeometry`, in metres and our sign.
+                 turning_radius: float = math.inf) -> tuple[WheelConstraint, ...]:
+    r"""The six-wheel rover of :class:`wheelkin.rover.RoverGeometry`, in metres and REP-103.
 
     Wheels LF, LM, LB, RF, RM, RB at the document's positions
-    (:func:`wheelkin.rover.wheel_positions`, inches, times 0.0254); the middle wheels fixed,
-    the corners steered to the document's turn of radius ``radius_in``
-    (:func:`wheelkin.rover.corner_angles`, whose positive angle turns the wheel clockwise,
-    so :math:`\delta_i = -\delta_i^{doc}`).
+    (:func:`wheelkin.rover.wheel_positions`, in metres); the middle wheels fixed, the corners
+    steered for a turn of signed radius ``turning_radius`` about a centre on the middle
+    wheels' axle (the document's corner angles, :func:`wheelkin.rover.corner_angles`, with
+    our sign: :math:`\delta_i = -\delta_i^{doc}`, positive to the left).
 
     Parameters
     ----------
@@ -852,27 +867,31 @@ def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: floa
         In inches or metres (its ``unit``); default :data:`wheelkin.rover.OSR_GEOMETRY`.
     wheel_radius : float
         :math:`r_w`, m (> 0); the document gives none: 0.06 m is the sandbox's estimate.
-    radius_in : float
-        The document's turning radius, inches, > 0 right, :math:`\pm\infty` straight (any
-        radius :func:`wheelkin.rover.corner_angles` accepts).
+    turning_radius : float
+        m, > 0 for a left turn (REP-103), :math:`\pm\infty` straight; at least the corner
+        stops' :func:`wheelkin.rover.min_turning_radius` in size.
 
     Examples
     --------
-    >>> wheels = rover_wheels(radius_in=30.0)    # the document's right turn of 30 in
+    The document's right turn of 30 in (0.762 m):
+
+    >>> wheels = rover_wheels(turning_radius=-0.762)
     >>> [round(math.degrees(w.steering), 3) for w in wheels]
     [-15.74, 0.0, 15.74, -24.779, 0.0, 24.779]
     """
     g = rover.OSR_GEOMETRY if geometry is None else geometry
     if not isinstance(g, rover.RoverGeometry):
         raise ValueError(f"geometry must be a RoverGeometry, got {type(g).__name__}")
-    g = g.in_unit("in")  # the document's turn is in inches; positions below in metres
+    g = g.in_unit("in")  # the document's corner angles are in inches; positions in metres
     r = v.positive("wheel_radius", wheel_radius)
-    turn = v.finite_array("radius_in", radius_in, allow_inf=True)
-    if turn.ndim != 0 or abs(float(turn)) < rover.min_turning_radius(g) * (1 - 1e-12):
-        raise ValueError(f"radius_in must be one number with |radius_in| >= "
-                         f"{rover.min_turning_radius(g):.6g} in (the corner stops), or +-inf; "
-                         f"got {radius_in!r}")
-    corners = dict(zip(rover.CORNER_NAMES, -np.asarray(rover.corner_angles(float(turn), g)),
+    turn = v.finite_array("turning_radius", turning_radius, allow_inf=True)
+    smallest = rover.min_turning_radius(g) * INCH
+    if turn.ndim != 0 or abs(float(turn)) < smallest * (1 - 1e-12):
+        raise ValueError(f"turning_radius must be one number with |turning_radius| >= "
+                         f"{smallest:.6g} m (the corner stops), or +-inf; "
+                         f"got {turning_radius!r}")
+    turn = -float(turn) / INCH  # the document's radius: inches, positive to the right
+    corners = dict(zip(rover.CORNER_NAMES, -np.asarray(rover.corner_angles(turn, g)),
                        strict=True))
     positions = rover.wheel_positions(g) * INCH
     return tuple(
@@ -882,11 +901,11 @@ def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: floa
         for i, name in enumerate(rover.WHEEL_NAMES))
 
 
-def car_wheels(wheelbase: float, track_width: float, wheel_radius: float,
-               radius: float = math.inf) -> tuple[WheelConstraint, ...]:
+def car_wheels(*, wheelbase: float, track_width: float, wheel_radius: float,
+               turning_radius: float = math.inf) -> tuple[WheelConstraint, ...]:
     r"""A car-like vehicle: steered FL :math:`(L, W/2)`, FR :math:`(L, -W/2)`, fixed RL
     :math:`(0, W/2)`, RR :math:`(0, -W/2)` (the rear-axle midpoint is the origin), the front
-    wheels steered to the ideal Ackermann angles of a turn of signed radius ``radius``
+    wheels steered to the ideal Ackermann angles of a turn of signed radius ``turning_radius``
     (:func:`wheelkin.carlike.ackermann_angles`; ``inf`` straight).
 
     Its sliding rows have rank 2 for any radius: one degree of mobility, one of steering
@@ -894,7 +913,8 @@ def car_wheels(wheelbase: float, track_width: float, wheel_radius: float,
 
     Examples
     --------
-    >>> wheels = car_wheels(0.33, 0.27, 0.05, radius=1.0)
+    >>> wheels = car_wheels(wheelbase=0.33, track_width=0.27, wheel_radius=0.05,
+    ...                     turning_radius=1.0)
     >>> [round(math.degrees(w.steering), 3) for w in wheels]
     [20.882, 16.212, 0.0, 0.0]
     """
@@ -903,9 +923,13 @@ def car_wheels(wheelbase: float, track_width: float, wheel_radius: float,
     L = v.positive("wheelbase", wheelbase)
     W = v.positive("track_width", track_width)
     r = v.positive("wheel_radius", wheel_radius)
-    if v.finite_array("radius", radius, allow_inf=True).ndim != 0:
-        raise ValueError(f"radius must be one number (inf: straight), got {radius!r}")
-    left, right = carlike.ackermann_angles(radius, L, W)
+    if v.finite_array("turning_radius", turning_radius, allow_inf=True).ndim != 0:
+        raise ValueError("turning_radius must be one number (inf: straight), got "
+                         f"{turning_radius!r}")
+    try:
+        left, right = carlike.ackermann_angles(turning_radius, L, W)
+    except ValueError as exc:
+        raise ValueError(str(exc).replace("radius", "turning_radius", 1)) from None
     return (WheelConstraint("FL", (L, W / 2), 0.0, r, "steered", steering=float(left)),
             WheelConstraint("FR", (L, -W / 2), 0.0, r, "steered", steering=float(right)),
             WheelConstraint("RL", (0.0, W / 2), 0.0, r, "fixed"),

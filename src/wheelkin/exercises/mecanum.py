@@ -32,7 +32,8 @@ _ROLLERS = np.array([-1.0, 1.0, 1.0, -1.0])
 def strafe_rates(speed: float, wheel_radius: float) -> np.ndarray:
     """Wheel rates (FL, FR, RL, RR), rad/s, that strafe left at ``speed`` m/s (45° rollers)."""
     # The half wheelbase and half track do not matter for a pure strafe (omega = 0).
-    return inverse_kinematics(0.0, speed, 0.0, MecanumGeometry(wheel_radius, 1.0, 1.0))
+    return inverse_kinematics(0.0, speed, 0.0, MecanumGeometry(
+        half_wheelbase=1.0, half_track=1.0, wheel_radius=wheel_radius))
 
 
 Exercise(
@@ -61,12 +62,14 @@ Exercise(
 def twist_from_rates(rates: ArrayLike, wheel_radius: float, half_wheelbase: float,
                      half_track: float) -> np.ndarray:
     """The body twist (vx m/s, vy m/s, omega rad/s) from wheel rates FL, FR, RL, RR (rad/s)."""
-    g = MecanumGeometry(wheel_radius, half_wheelbase, half_track)
+    g = MecanumGeometry(half_wheelbase=half_wheelbase, half_track=half_track,
+                        wheel_radius=wheel_radius)
     return forward_kinematics(rates, g)
 
 
 def _twist_full_dims(rates, wheel_radius, half_wheelbase, half_track):
-    g = MecanumGeometry(wheel_radius, 2 * half_wheelbase, 2 * half_track)
+    g = MecanumGeometry(half_wheelbase=2 * half_wheelbase, half_track=2 * half_track,
+                        wheel_radius=wheel_radius)
     return forward_kinematics(rates, g)
 
 
@@ -110,17 +113,21 @@ Exercise(
 def rates_60(vx: float, vy: float, omega: float, wheel_radius: float, half_wheelbase: float,
              half_track: float) -> np.ndarray:
     """Wheel rates FL, FR, RL, RR (rad/s) for rollers at 60 degrees to the axle."""
-    g = MecanumGeometry(wheel_radius, half_wheelbase, half_track, roller_angle=math.pi / 3)
+    g = MecanumGeometry(half_wheelbase=half_wheelbase, half_track=half_track,
+                        wheel_radius=wheel_radius, roller_angle=math.pi / 3)
     return inverse_kinematics(vx, vy, omega, g)
 
 
 def _rates_45(vx, vy, omega, wheel_radius, half_wheelbase, half_track):
     return inverse_kinematics(vx, vy, omega,
-                              MecanumGeometry(wheel_radius, half_wheelbase, half_track))
+                              MecanumGeometry(half_wheelbase=half_wheelbase,
+                                              half_track=half_track,
+                                              wheel_radius=wheel_radius))
 
 
 def _rates_tan(vx, vy, omega, wheel_radius, half_wheelbase, half_track):
-    g = MecanumGeometry(wheel_radius, half_wheelbase, half_track, roller_angle=math.pi / 6)
+    g = MecanumGeometry(half_wheelbase=half_wheelbase, half_track=half_track,
+                        wheel_radius=wheel_radius, roller_angle=math.pi / 6)
     return inverse_kinematics(vx, vy, omega, g)
 
 
@@ -189,7 +196,8 @@ def _uses(angle_deg, strafe_speed, side_accel, max_rim_speed, mu, gravity=9.81):
     Checked against the library's fastest rim and grip usage:
 
     >>> from wheelkin.mecanum import MecanumGeometry, grip_usage, max_rim_speed
-    >>> g = MecanumGeometry(0.05, 0.2, 0.15, roller_angle=math.radians(60))
+    >>> g = MecanumGeometry(half_wheelbase=0.2, half_track=0.15, wheel_radius=0.05,
+    ...                     roller_angle=math.radians(60))
     >>> speed, grip = _uses(60.0, 2.0, 1.5, 3.0, 0.8)
     >>> bool(np.isclose(speed, max_rim_speed(0.0, 2.0, 0.0, g) / 3.0))
     True

@@ -217,7 +217,9 @@ SKID_NAMES = ("FL", "FR", "RL", "RR")
 def skid_steer_slip(v: float, omega: float, half_track: float, half_wheelbase: float) -> np.ndarray:
     """Sideways sliding speed (m/s, along each wheel's left) of a skid steer's wheels FL, FR,
     RL, RR driving the twist (v, 0, omega)."""
-    return slip_residual(skid_steer_wheels(half_track, half_wheelbase, 0.05), (v, 0.0, omega))
+    wheels = skid_steer_wheels(half_wheelbase=half_wheelbase, half_track=half_track,
+                               wheel_radius=0.05)
+    return slip_residual(wheels, (v, 0.0, omega))
 
 
 def _skid_track(v, omega, half_track, half_wheelbase):
@@ -272,9 +274,9 @@ CANDIDATES = (
     ("differential drive: two fixed driven wheels on one axle and a caster",
      lambda: diff_drive_wheels(0.3, 0.05), 2),
     ("skid steer: four fixed driven wheels on two axles",
-     lambda: skid_steer_wheels(0.15, 0.2, 0.05), 4),
+     lambda: skid_steer_wheels(half_track=0.15, half_wheelbase=0.2, wheel_radius=0.05), 4),
     ("mecanum: four 45-degree Swedish wheels", lambda: mecanum_wheels(MecanumGeometry(
-        0.05, 0.2, 0.15)), 4),
+        wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)), 4),
     ("omni base: three 90-degree Swedish wheels at 120 degrees", _omni_base, 3),
     ("tricycle: a fixed unpowered rear axle and a driven, steered front wheel",
      lambda: _tricycle("steered"), 2),

@@ -63,10 +63,10 @@ GEOMETRIES = ("ackermann", "linkage", "parallel")
 
 
 def car(
+    *,
     wheelbase: float,
     track_width: float,
     wheel_radius: float,
-    *,
     mass: float = 3.5,
     inertia: float | None = None,
     front_load: float = 0.5,
@@ -95,10 +95,10 @@ def car(
 
     Examples
     --------
-    >>> spec = car(0.33, 0.27, 0.05)
+    >>> spec = car(wheelbase=0.33, track_width=0.27, wheel_radius=0.05)
     >>> spec.wheel_names, spec.steered_names
     (('FL', 'FR', 'RL', 'RR'), ('FL', 'FR'))
-    >>> car(0.33, 0.27, 0.05, front_load=1.0)
+    >>> car(wheelbase=0.33, track_width=0.27, wheel_radius=0.05, front_load=1.0)
     Traceback (most recent call last):
     ...
     ValueError: front_load must be in (0, 1), got 1.0
@@ -111,7 +111,7 @@ def car(
         raise ValueError(f"front_load must be in (0, 1), got {front_load!r}")
     if body is None:
         body = _rectangle(-r, L + r, -0.4 * W, 0.4 * W)
-    wheels = unified.car_wheels(L, W, r)
+    wheels = unified.car_wheels(wheelbase=L, track_width=W, wheel_radius=r)
     kwargs.setdefault("steered_names", ("FL", "FR"))
     kwargs.setdefault("free_rolling", ("FL", "FR"))
     loads = (f / 2, f / 2, (1 - f) / 2, (1 - f) / 2)
@@ -120,7 +120,7 @@ def car(
 
 #: A 1/10-scale car-like robot (F1TENTH class): L = 0.33 m, W = 0.27 m, r = 0.05 m, 3.5 kg;
 #: steering limit 0.4189 rad (24 deg) on the inner wheel (our estimates of a typical build).
-RC_CAR = car(0.33, 0.27, 0.05, mass=3.5, name="1/10 car")
+RC_CAR = car(wheelbase=0.33, track_width=0.27, wheel_radius=0.05, mass=3.5, name="1/10 car")
 #: The steering limit used with :data:`RC_CAR`, rad.
 RC_CAR_MAX_STEERING = 0.4189
 
@@ -139,7 +139,7 @@ def _car_geometry(spec: VehicleSpec) -> tuple[float, float, float]:
         raise ValueError(f"spec must be a car (see wheelkin.sandbox.car.car), got {spec.name!r}")
     L = names["FL"].position[0] - names["RL"].position[0]
     W = names["RL"].position[1] - names["RR"].position[1]
-    return L, W, names["RL"].radius
+    return L, W, names["RL"].wheel_radius
 
 
 @dataclass(frozen=True)

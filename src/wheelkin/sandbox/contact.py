@@ -126,11 +126,11 @@ def constraint_rows(spec: VehicleSpec, steering: Sequence[float] = ()
     for j, wheel in enumerate(spec.wheels_at(steer)):
         if wheel.kind == "swedish":
             rows = [(unified.roller_row(wheel),
-                     wheel.radius * float(wheel.roller_axis @ wheel.rolling_direction))]
+                     wheel.wheel_radius * float(wheel.roller_axis @ wheel.rolling_direction))]
         elif wheel.name in spec.free_rolling:  # rolls freely: an empty rolling row, sliding
             rows = [(np.zeros(3), 0.0), (unified.sliding_row(wheel), 0.0)]
         else:
-            rows = [(unified.rolling_row(wheel), wheel.radius),
+            rows = [(unified.rolling_row(wheel), wheel.wheel_radius),
                     (unified.sliding_row(wheel), 0.0)]
         for row, coeff in rows:
             J.append(row)
@@ -375,7 +375,7 @@ class _Base:
         self.stick_speeds = (0.0,) * self.n
         where = {name: i for i, name in enumerate(spec.steered_names)}
         self.table = tuple(
-            (w.position[0], w.position[1], w.heading, w.radius, w.kind == "swedish",
+            (w.position[0], w.position[1], w.heading, w.wheel_radius, w.kind == "swedish",
              w.roller_angle, where.get(w.name, -1),
              (float(cap) * (1.0 + CAP_TOLERANCE)) ** 2, w.name in spec.free_rolling)
             for w, cap in zip(spec.driven_wheels, self.caps, strict=True))

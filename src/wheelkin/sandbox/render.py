@@ -96,7 +96,7 @@ def _to_world(pose, points: np.ndarray) -> np.ndarray:
 
 def _wheel_outline(wheel, angle: float) -> np.ndarray:
     """Body-frame corners of a wheel's top view (length 2 r_w, its tyre width)."""
-    half_l, half_w = wheel.radius, 0.3 * wheel.radius
+    half_l, half_w = wheel.wheel_radius, 0.3 * wheel.wheel_radius
     c, s = math.cos(angle), math.sin(angle)
     px, py = wheel.position
     local = np.array([(-half_l, -half_w), (half_l, -half_w), (half_l, half_w), (-half_l, half_w)])
@@ -108,14 +108,14 @@ def _rollers(wheel, angle: float, count: int = 4) -> np.ndarray:
     """Body-frame segments of a Swedish wheel's ground rollers, shape (count, 2, 2)."""
     ux, uy = roller_axis(angle, wheel.roller_angle)  # the axle turned by gamma
     ex, ey = math.cos(angle), math.sin(angle)
-    half_w = 0.3 * wheel.radius
+    half_w = 0.3 * wheel.wheel_radius
     # A roller spans the tyre width: length half_w / |u . n| along u, clipped to the wheel.
     un = abs(math.cos(wheel.roller_angle))
-    half = min(half_w / max(un, 1e-9), wheel.radius)
+    half = min(half_w / max(un, 1e-9), wheel.wheel_radius)
     px, py = wheel.position
     segs = []
     for i in range(count):
-        off = wheel.radius * (-0.75 + 1.5 * i / (count - 1))
+        off = wheel.wheel_radius * (-0.75 + 1.5 * i / (count - 1))
         cx, cy = px + off * ex, py + off * ey
         segs.append(((cx - half * ux, cy - half * uy), (cx + half * ux, cy + half * uy)))
     return np.array(segs)
@@ -238,7 +238,7 @@ class VehicleDrawing:
         for wheel, text in zip(spec.wheels, self.labels, strict=False):
             px, py = wheel.position
             dist = max(math.hypot(px, py), 1e-9)
-            scale = 1.0 + (1.4 * wheel.radius + 0.08 * self._size) / dist
+            scale = 1.0 + (1.4 * wheel.wheel_radius + 0.08 * self._size) / dist
             (lx, ly), = _to_world(pose, np.array([[px * scale, py * scale]]))
             text.set_position((lx, ly))
         icr = None
@@ -579,7 +579,7 @@ def animate(
     if plan_arr is not None:
         pts.append(plan_arr)
     allp = np.concatenate(pts)
-    reach = max(max(math.hypot(*p) for p in s.body) + max(w.radius for w in s.wheels)
+    reach = max(max(math.hypot(*p) for p in s.body) + max(w.wheel_radius for w in s.wheels)
                 for s in specs)
     if limits is None:
         lo, hi = allp.min(0) - 1.3 * reach, allp.max(0) + 1.3 * reach

@@ -408,10 +408,10 @@ def diff_drive(
 
 
 def skid_steer(
-    half_track: float,
-    half_wheelbase: float,
-    wheel_radius: float,
     *,
+    half_wheelbase: float,
+    half_track: float,
+    wheel_radius: float,
     mass: float = 1.4,
     inertia: float | None = None,
     body: npt.ArrayLike | None = None,
@@ -427,25 +427,25 @@ def skid_steer(
 
     Examples
     --------
-    >>> spec = skid_steer(0.06, 0.05, 0.04)
+    >>> spec = skid_steer(half_wheelbase=0.05, half_track=0.06, wheel_radius=0.04)
     >>> spec.wheel_names
     ('FL', 'FR', 'RL', 'RR')
     """
-    b = V.positive("half_track", half_track)
     a = V.positive("half_wheelbase", half_wheelbase)
+    b = V.positive("half_track", half_track)
     r = V.positive("wheel_radius", wheel_radius)
     if body is None:
         body = _rectangle(-a - r, a + r, -0.8 * b, 0.8 * b)
-    wheels = unified.skid_steer_wheels(b, a, r)
+    wheels = unified.skid_steer_wheels(half_wheelbase=a, half_track=b, wheel_radius=r)
     return _finish(name, mass, inertia, body, wheels, (0.25,) * 4, **kwargs)
 
 
 def mecanum(
-    wheel_radius: float,
+    *,
     half_wheelbase: float,
     half_track: float,
+    wheel_radius: float,
     roller_angle: float = math.pi / 4,
-    *,
     mass: float = 4.0,
     inertia: float | None = None,
     body: npt.ArrayLike | None = None,
@@ -466,12 +466,13 @@ def mecanum(
 
     Examples
     --------
-    >>> spec = mecanum(0.05, 0.15, 0.15)
+    >>> spec = mecanum(half_wheelbase=0.15, half_track=0.15, wheel_radius=0.05)
     >>> rates, _ = ideal_commands(spec, (1.0, 1.0, 0.0))
     >>> [round(float(x), 6) for x in rates]  # forward-left: FL and RR stand still
     [0.0, 40.0, 40.0, 0.0]
     """
-    geometry = MecanumGeometry(wheel_radius, half_wheelbase, half_track, roller_angle)
+    geometry = MecanumGeometry(half_wheelbase=half_wheelbase, half_track=half_track,
+                               wheel_radius=wheel_radius, roller_angle=roller_angle)
     a, b, r = geometry.half_wheelbase, geometry.half_track, geometry.wheel_radius
     if body is None:
         body = _rectangle(-a - 0.6 * r, a + 0.6 * r, -0.75 * b, 0.75 * b)
@@ -506,7 +507,7 @@ def rover(
     (('LF', 'RF', 'LB', 'RB'), 0.2667)
     """
     wheels = unified.rover_wheels(geometry, wheel_radius)
-    r = wheels[0].radius
+    r = wheels[0].wheel_radius
     if body is None:
         xs = [w.position[0] for w in wheels]
         d1 = max(w.position[1] for w in wheels if w.kind == "steered")
@@ -577,7 +578,7 @@ def command_table(spec: VehicleSpec) -> tuple[tuple, ...]:
         if wheel.kind == "swedish":
             ux, uy = (float(c) for c in wheel.roller_axis)
         table.append((wheel.kind, *wheel.position, wheel.heading, ex, ey, ux, uy,
-                      wheel.radius, where.get(wheel.name, -1)))
+                      wheel.wheel_radius, where.get(wheel.name, -1)))
     return tuple(table)
 
 
@@ -623,11 +624,13 @@ RADON_ULZER = diff_drive(
 #: The waypoint lab's four-wheel skid steer (the Webots tutorial robot): wheel radius 0.04 m,
 #: wheels at +-0.05 m along x and +-0.06 m across, body 0.2 m x 0.1 m, 1.4 kg.
 LAB_ROBOT = skid_steer(
-    0.06, 0.05, 0.04, mass=1.4, body=_rectangle(-0.1, 0.1, -0.05, 0.05), name="lab robot"
+    half_wheelbase=0.05, half_track=0.06, wheel_radius=0.04, mass=1.4,
+    body=_rectangle(-0.1, 0.1, -0.05, 0.05), name="lab robot"
 )
 
 #: A generic 30 cm mecanum platform: r = 0.05 m, half wheelbase and half track 0.15 m, 4 kg.
-MECANUM_ROBOT = mecanum(0.05, 0.15, 0.15, name="mecanum robot")
+MECANUM_ROBOT = mecanum(half_wheelbase=0.15, half_track=0.15, wheel_radius=0.05,
+                        name="mecanum robot")
 
 #: The JPL Open Source Rover: :data:`wheelkin.rover.OSR_GEOMETRY` (d1 = 7.254 in,
 #: d2 = d3 = 10.5 in, d4 = 10.073 in); r = 0.06 m and 11 kg are our estimates.

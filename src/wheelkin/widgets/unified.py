@@ -47,7 +47,7 @@ SLIP_FLOOR = 1e-9
 
 def _reach(spec) -> float:
     return max(max(math.hypot(*p) for p in spec.body),
-               max(math.hypot(*w.position) + w.radius for w in spec.wheels))
+               max(math.hypot(*w.position) + w.wheel_radius for w in spec.wheels))
 
 
 class ConstraintView:

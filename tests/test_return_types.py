@@ -1,0 +1,174 @@
+"""One rule for what the library returns (docs/DESIGN.md, "The library, second edition"):
+
+1. one quantity: a Python ``float`` (``int`` in the integer emulation) for scalar input, an
+   ``ndarray`` for array input; never a 0-d array or a NumPy scalar;
+2. several named quantities: a ``NamedTuple`` whose fields follow rule 1; never a bare tuple;
+   a pose or a twist is a :class:`~wheelkin.frames.Pose` or :class:`~wheelkin.frames.Twist`
+   (NamedTuples too) when it is one, computed from scalars or from a Pose/Twist;
+3. a fixed-layout vector given or computed as an array (poses and twists of shape (..., 3),
+   wheel rates in a vehicle's wheel order, points, matrices) stays an ``ndarray``;
+4. geometry and records: frozen dataclasses; a vehicle's wheels, a plan: a tuple or list of
+   them.
+
+Every public callable of the formula modules is called with valid scalar arguments (the
+bad-input sweep's table) and its result walked; then the pose and twist functions are called
+with Pose/Twist objects and with stacks of arrays.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import math
+
+import numpy as np
+import pytest
+import test_bad_input as sweep
+
+from wheelkin import carlike, frames, mecanum, rover
+from wheelkin.frames import Pose, Twist
+
+#: Valid scalar calls of ``wheelkin.carlike`` (swept for bad input in its own test file).
+CARLIKE_GOOD = {
+    "radius": 5.0, "wheelbase": 2.5, "curvature": 0.2, "inner_angle": 0.3,
+    "track_width": 1.5, "speed": 1.0, "steering_angle": 0.2, "front_speed": 1.0,
+    "rear_to_com": 1.0, "max_steering_angle": 0.5, "x": 1.0, "y": 0.5, "arm_length": 0.15,
+    "arm_angle": 0.3, "max_inner_angle": 0.6,
+}
+
+
+def violations(out, where: str = "result", depth: int = 0) -> list[str]:
+    """Where ``out`` breaks the rule (an empty list when it keeps it)."""
+    if depth > 5:
+        return []
+    if isinstance(out, np.ndarray):
+        return [f"{where} is a 0-d array"] if out.ndim == 0 else []
+    if isinstance(out, np.generic):
+        return [f"{where} is a NumPy scalar ({type(out).__name__})"]
+    if isinstance(out, tuple) and hasattr(out, "_fields"):
+        return [v for name, value in zip(out._fields, out, strict=True)
+                for v in violations(value, f"{where}.{name}", depth + 1)]
+    if isinstance(out, tuple | list):
+        if out and all(dataclasses.is_dataclass(o) and not isinstance(o, type) for o in out):
+            return []  # a collection of records: a vehicle's wheels, a plan's segments
+        return [f"{where} is a bare {type(out).__name__} of "
+                f"{', '.join(sorted({type(o).__name__ for o in out}))}"]
+    return []
+
+
+def test_the_walk_finds_each_kind_of_violation():
+    assert violations(np.array(1.0)) == ["result is a 0-d array"]
+    assert violations(np.float64(1.0)) == ["result is a NumPy scalar (float64)"]
+    assert violations((1.0, 2.0)) == ["result is a bare tuple of float"]
+    assert violations(Twist(1.0, 0.0, 0.0)) == []
+    assert violations(frames.HalfTurn(np.float64(0.1), 1.0)) == [
+        "result.angle is a NumPy scalar (float64)"]
+    assert violations([frames.Pose(0, 0, 0)]) == ["result is a bare list of Pose"]
+    assert violations(1.0) == violations(np.zeros(3)) == violations(3) == []
+
+
+def _formula_calls():
+    good = sweep._good_values()
+    for qualname, fn in sweep._public_callables():
+        kwargs = sweep._resolve(qualname, sweep._good_call(qualname, fn, good)
+                                | sweep.OVERRIDES.get(qualname, {}))
+        yield qualname, fn, kwargs
+    for name in carlike.__all__:
+        fn = getattr(carlike, name)
+        if isinstance(fn, type):
+            continue
+        kwargs = {p.name: CARLIKE_GOOD[p.name] for p in inspect.signature(fn).parameters.values()
+                  if p.default is p.empty}
+        yield f"carlike.{name}", fn, kwargs
+
+
+CALLS = list(_formula_calls())
+
+
+@pytest.mark.parametrize(("qualname", "fn", "kwargs"), CALLS, ids=[c[0] for c in CALLS])
+def test_every_public_callable_follows_the_return_rule(qualname, fn, kwargs):
+    out = fn(**kwargs)
+    assert violations(out) == [], qualname
+
+
+def test_the_table_reaches_every_formula_module():
+    modules = {q.split(".")[0] for q, _, _ in CALLS}
+    assert modules == {*sweep.FORMULA_MODULES, "carlike"}
+    assert len(CALLS) > 120
+
+
+# --------------------------------------------------------------------------------------------
+# Poses and twists: one is a Pose/Twist, a stack is an array (..., 3)
+
+#: (function, arguments with Pose/Twist objects, the record type it must return).
+ONE = [
+    (frames.se2_exp, (Twist(1.0, 0.2, 0.5), 0.5), Pose),
+    (frames.se2_log, (Pose(1.0, 0.2, 0.5),), Twist),
+    (frames.compose, (Pose(1.0, 2.0, 0.3), Pose(0.5, 0.0, 0.1)), Pose),
+    (frames.inverse, (Pose(1.0, 2.0, 0.3),), Pose),
+    (frames.relative, (Pose(1.0, 2.0, 0.3), Pose(0.5, 0.0, 0.1)), Pose),
+    (frames.pose_rate, (0.3, Twist(1.0, 0.2, 0.5)), frames.PoseRate),
+    (frames.ours_to_lab_pose, (Pose(1.0, 2.0, 0.3),), Pose),
+    (frames.ours_to_firmware_pose, (Pose(1.0, 2.0, 0.3),), frames.FirmwarePose),
+    (frames.ours_to_mecanum_doc_pose, (Pose(1.0, 2.0, 0.3),), frames.MecanumDocPose),
+    (frames.ours_to_mecanum_doc_twist, (Twist(1.0, 2.0, 0.3),), frames.MecanumDocTwist),
+    (frames.lab_pose_to_ours, (1.0, 2.0, 0.3), Pose),
+    (frames.firmware_pose_to_ours, (1.0, 2.0, 0.3), Pose),
+    (frames.mecanum_doc_pose_to_ours, (1.0, 2.0, 0.3), Pose),
+    (frames.mecanum_doc_twist_to_ours, (1.0, 2.0, 0.3), Twist),
+    (frames.rover_twist, (30.0, 10.0), Twist),
+    (rover.body_twist, (30.0, 10.0), Twist),
+    (carlike.bicycle_twist, (1.0, 0.2, 2.5), Twist),
+    (carlike.tricycle_twist, (1.0, 0.2, 2.5), Twist),
+    (mecanum.circle_twist, (2.0, 10.0), Twist),
+    (mecanum.go_to_point_twist, (Pose(0.0, 0.0, 0.0), Pose(1.0, 1.0, 0.5), 1.0, 1.0), Twist),
+]
+
+
+@pytest.mark.parametrize(("fn", "args", "kind"), ONE, ids=[f[0].__name__ for f in ONE])
+def test_one_pose_or_twist_is_a_record_that_unpacks(fn, args, kind):
+    out = fn(*args)
+    assert type(out) is kind
+    assert all(type(c) is float for c in out)
+    first, _, last = out  # unpacks
+    assert (first, last) == (out[0], out[2])
+    assert np.asarray(out).shape == (3,)
+
+
+def _stack(record) -> np.ndarray:
+    return np.stack([np.asarray(record, dtype=float)] * 4) + np.linspace(0, 0.1, 4)[:, None]
+
+
+#: (function, arguments with stacks of shape (4, 3) or (4,)).
+MANY = [
+    (frames.se2_exp, lambda: (_stack(Twist(1.0, 0.2, 0.5)), 0.5)),
+    (frames.se2_log, lambda: (_stack(Pose(1.0, 0.2, 0.5)),)),
+    (frames.compose, lambda: (_stack(Pose(1.0, 2.0, 0.3)), _stack(Pose(0.5, 0.0, 0.1)))),
+    (frames.inverse, lambda: (_stack(Pose(1.0, 2.0, 0.3)),)),
+    (frames.pose_rate, lambda: (np.full(4, 0.3), _stack(Twist(1.0, 0.2, 0.5)))),
+    (frames.ours_to_firmware_pose, lambda: (_stack(Pose(1.0, 2.0, 0.3)),)),
+    (frames.firmware_pose_to_ours, lambda: (np.ones(4), np.ones(4), np.zeros(4))),
+    (frames.rover_twist, lambda: (np.full(4, 30.0), np.full(4, 10.0))),
+    (carlike.bicycle_twist, lambda: (np.ones(4), np.full(4, 0.2), 2.5)),
+    (carlike.tricycle_twist, lambda: (np.ones(4), np.full(4, 0.2), 2.5)),
+    (mecanum.circle_twist, lambda: (np.full(4, 2.0), 10.0)),
+    (mecanum.forward_kinematics, lambda: (np.ones((4, 4)), mecanum.EXAMPLE_GEOMETRY)),
+]
+
+
+@pytest.mark.parametrize(("fn", "args"), MANY, ids=[f[0].__name__ for f in MANY])
+def test_a_stack_of_poses_or_twists_is_an_array(fn, args):
+    out = fn(*args())
+    assert isinstance(out, np.ndarray) and out.shape == (4, 3)
+
+
+def test_a_record_and_its_array_agree():
+    """The record and the array paths are one computation: row k of the stack is the record
+    of row k."""
+    twists = _stack(Twist(1.0, 0.2, 0.5))
+    for k in range(4):
+        one = frames.se2_exp(Twist(*twists[k]), 0.5)
+        assert np.array_equal(np.asarray(one), frames.se2_exp(twists, 0.5)[k])
+    bike = carlike.bicycle_twist(np.ones(4), np.full(4, 0.2), 2.5)
+    assert np.array_equal(np.asarray(carlike.bicycle_twist(1.0, 0.2, 2.5)), bike[0])
+    assert math.isclose(carlike.bicycle_twist(1.0, 0.2, 2.5).omega, math.tan(0.2) / 2.5)
