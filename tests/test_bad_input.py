@@ -528,7 +528,7 @@ def test_the_cases_named_in_the_issue():
     with pytest.raises(ValueError, match="wheel_rate"):  # was a ZeroDivisionError
         waypoints.schedule(segs, 0.04, 0.06, wheel_rate=5e-324)
     with pytest.raises(ValueError, match="speed_in_per_s"):  # blamed `speed` before
-        rover.body_twist(30.0, math.nan)
+        rover.document_twist(30.0, math.nan)
     with pytest.raises(ValueError, match="track_width"):  # True is not 1.0 m
         from wheelkin import diffdrive
 

@@ -256,8 +256,8 @@ def test_rover_body_twist_of_a_left_turn_mirrors_a_right_turn(radius, speed_):
     (vx, -vy, -omega) (its wheels: the every-vehicle test above)."""
     if math.isinf(radius):
         radius = -math.inf if speed_ < 0 else math.inf  # straight either way
-    right = rover.body_twist(radius, speed_).as_array()
-    left = rover.body_twist(-radius, speed_).as_array()
+    right = rover.document_twist(radius, speed_).as_array()
+    left = rover.document_twist(-radius, speed_).as_array()
     close(left, right * MIRROR, 1 + abs(speed_))
 
 

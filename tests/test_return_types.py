@@ -117,7 +117,7 @@ ONE = [
     (frames.mecanum_doc_pose_to_ours, (1.0, 2.0, 0.3), Pose),
     (frames.mecanum_doc_twist_to_ours, (1.0, 2.0, 0.3), Twist),
     (frames.rover_twist, (30.0, 10.0), Twist),
-    (rover.body_twist, (30.0, 10.0), Twist),
+    (rover.document_twist, (30.0, 10.0), Twist),
     (carlike.bicycle_twist, (1.0, 0.2, 2.5), Twist),
     (carlike.tricycle_twist, (1.0, 0.2, 2.5), Twist),
     (mecanum.circle_twist, (2.0, 10.0), Twist),
@@ -172,3 +172,22 @@ def test_a_record_and_its_array_agree():
     bike = carlike.bicycle_twist(np.ones(4), np.full(4, 0.2), 2.5)
     assert np.array_equal(np.asarray(carlike.bicycle_twist(1.0, 0.2, 2.5)), bike[0])
     assert math.isclose(carlike.bicycle_twist(1.0, 0.2, 2.5).omega, math.tan(0.2) / 2.5)
+
+
+#: Sandbox entries whose sweep wrapper returns the world's state after the call (the call
+#: itself returns None or the object it built).
+STATE_WRAPPERS = ("world.", "car.PurePursuitDriver.__call__")
+
+
+def test_every_sandbox_callable_follows_the_return_rule():
+    import test_bad_input_sandbox as sandbox_sweep
+
+    checked, broken = 0, []
+    for qualname in sorted(sandbox_sweep._ENTRIES):
+        if qualname.startswith(STATE_WRAPPERS):
+            continue
+        fn, kwargs, _ = sandbox_sweep._valid(qualname)
+        broken += [f"{qualname}: {v}" for v in violations(fn(**kwargs))]
+        checked += 1
+    assert not broken, "\n".join(broken)
+    assert checked > 25

@@ -297,7 +297,7 @@ def test_body_twist_is_rep103():
     inch = units.INCH
     assert inch == pytest.approx(0.0254)
     for radius, x in ((30.0, 10.0), (-30.0, 10.0), (20.0, -5.0), (np.inf, 7.0), (260.0, 7.0)):
-        vx, vy, omega = rover.body_twist(radius, x).as_array()
+        vx, vy, omega = rover.document_twist(radius, x).as_array()
         if np.isfinite(radius) and abs(radius) < 250:
             w, _ = rigid_body(radius, x, OSR_POINTS, 10.073)
             v = abs(w) * abs(radius) * np.sign(x)

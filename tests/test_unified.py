@@ -173,7 +173,7 @@ def test_rover_rates_are_the_rover_chapter(data, speed, wheel_radius, dims):
     g = RoverGeometry(*dims)
     radius = data.draw(_radius_in(g))
     wheels = rover_wheels(g, wheel_radius, -radius * INCH)
-    twist = rover.body_twist(radius, speed, g)
+    twist = rover.document_twist(radius, speed, g)
     rim_in_per_s = wheel_rates(wheels, twist) * wheel_radius / INCH
     np.testing.assert_allclose(rim_in_per_s, rover.wheel_speeds(radius, speed, g),
                                rtol=1e-9, atol=1e-9)
@@ -235,8 +235,8 @@ def test_batches_of_twists_give_batches_of_rates():
 
 
 def test_a_left_turn_mirrors_a_right_turn():
-    right = wheel_rates(rover_wheels(turning_radius=-40.0 * INCH), rover.body_twist(40.0, 10.0))
-    left = wheel_rates(rover_wheels(turning_radius=40.0 * INCH), rover.body_twist(-40.0, 10.0))
+    right = wheel_rates(rover_wheels(turning_radius=-40.0 * INCH), rover.document_twist(40.0, 10.0))
+    left = wheel_rates(rover_wheels(turning_radius=40.0 * INCH), rover.document_twist(-40.0, 10.0))
     np.testing.assert_allclose(left, right[[3, 4, 5, 0, 1, 2]], atol=1e-12)
 
 

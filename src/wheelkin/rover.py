@@ -5,7 +5,7 @@ own convention**, so that its numbers can be checked one for one:
 
 - lengths in **inches** (any consistent unit works; the defaults are the OSR's inches);
 - a turning radius ``r > 0`` turns **right**, ``r < 0`` turns left (REP-103, and the rest of
-  this library, use the opposite sign: :func:`body_twist` converts);
+  this library, use the opposite sign: :func:`document_twist` converts);
 - wheels numbered 1..6 = LF, LM, LB, RF, RM, RB (left front, left middle, left back, right
   front, right middle, right back), the order of every six-element array here;
 - corners in the order LF, RF, LB, RB; a corner angle ``delta > 0`` means the wheel's front
@@ -74,10 +74,10 @@ __all__ = [
     "RoverCommand",
     "RoverGeometry",
     "SandboxCommand",
-    "body_twist",
     "centre_speed",
     "command_to_radius",
     "corner_angles",
+    "document_twist",
     "min_turning_radius",
     "outer_middle_is_fastest_above",
     "radius_to_command",
@@ -546,7 +546,7 @@ def radius_to_command(radius: ArrayLike) -> float | NDArray[np.float64]:
     return float(c) if c.ndim == 0 else c
 
 
-def body_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry = OSR_GEOMETRY,
+def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry = OSR_GEOMETRY,
                straight_threshold: float = STRAIGHT_THRESHOLD, *,
                max_corner_angle: float = HARD_STOP) -> Twist:
     """The body twist in **our** convention (SI, REP-103: x forward, y left, omega
@@ -570,7 +570,7 @@ def body_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry = O
 
     Examples
     --------
-    >>> tw = body_twist(30.0, 10.0)  # right turn: omega < 0 in REP-103
+    >>> tw = document_twist(30.0, 10.0)  # right turn: omega < 0 in REP-103
     >>> print(f"{tw.vx:.5f} {tw.vy:.1f} {tw.omega:.5f}")
     0.19015 0.0 -0.24954
     """
@@ -686,7 +686,7 @@ def wheel_commands(v: ArrayLike, omega: ArrayLike,
     --------
     The document's right turn of r = 30 in, outer middle wheel (LM) at 10 in/s, as a twist:
 
-    >>> tw = body_twist(30.0, 10.0)
+    >>> tw = document_twist(30.0, 10.0)
     >>> cmd = wheel_commands(tw.vx, tw.omega)
     >>> np.round(cmd.wheel_speeds / INCH, 3)  # in/s, the document's table at X = 10
     array([ 9.659, 10.   ,  9.659,  6.252,  4.973,  6.252])

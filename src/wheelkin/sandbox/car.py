@@ -37,6 +37,7 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -51,6 +52,7 @@ from .world import Robot, World
 __all__ = [
     "GEOMETRIES",
     "RC_CAR",
+    "FrontAngles",
     "PurePursuitDriver",
     "Steering",
     "car",
@@ -181,8 +183,15 @@ class Steering:
 _DEFAULT = Steering()
 
 
+class FrontAngles(NamedTuple):
+    """The front wheels' steering angles (rad, positive to the left), FL and FR."""
+
+    left: float
+    right: float
+
+
 def front_angles(steering: Steering, delta: float, wheelbase: float, track_width: float
-                 ) -> tuple[float, float]:
+                 ) -> FrontAngles:
     """(FL, FR) wheel angles, rad, for the bicycle steering command ``delta`` (rad).
 
     Examples
@@ -198,18 +207,18 @@ def front_angles(steering: Steering, delta: float, wheelbase: float, track_width
     L = V.in_range("wheelbase", wheelbase, 1e-3, 1e3)
     W = V.in_range("track_width", track_width, 1e-3, 1e3)
     if steering.geometry == "parallel" or d == 0.0:
-        return d, d
+        return FrontAngles(d, d)
     t = math.tan(d)
     left = math.atan2(L * t, L - 0.5 * W * t)  # the ICR at (0, L/t) on the rear axle line
     right = -math.atan2(-L * t, L + 0.5 * W * t)
     if steering.geometry == "ackermann":
-        return left, right
+        return FrontAngles(left, right)
     inner = left if d > 0 else right
     beta = steering.arm_angle
     if beta is None:
         beta = math.atan2(W / 2, L)
     lk = carlike.linkage_angles(inner, W, steering.arm_length, beta)
-    return float(lk.left), float(lk.right)
+    return FrontAngles(float(lk.left), float(lk.right))
 
 
 def drive(robot: Robot, speed: float, delta: float, steering: Steering | None = None) -> None:

@@ -65,6 +65,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -77,7 +78,7 @@ from .vehicles import VehicleSpec
 
 # ContactModel and ContactResult are the world's engine (World.step calls them with values it
 # has checked, every step); the public functions are the rows and the objective.
-__all__ = ["constraint_rows", "dissipation_objective"]
+__all__ = ["ConstraintRows", "constraint_rows", "dissipation_objective"]
 
 #: A constraint whose contact velocity misses its request by more than this slips (m/s).
 SLIP_TOLERANCE = 1e-9
@@ -85,8 +86,18 @@ SLIP_TOLERANCE = 1e-9
 CAP_TOLERANCE = 1e-9
 
 
-def constraint_rows(spec: VehicleSpec, steering: Sequence[float] = ()
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+class ConstraintRows(NamedTuple):
+    """The contact constraints of a vehicle (see :func:`constraint_rows`)."""
+
+    #: Constraint Jacobian, shape (m, 3): row i is the row's direction applied to the twist.
+    J: np.ndarray
+    #: Rate map, shape (m, n): the requested contact velocity is ``B @ phi``.
+    B: np.ndarray
+    #: The index (in ``spec.wheel_names``) of the wheel each row belongs to, shape (m,).
+    owner: np.ndarray
+
+
+def constraint_rows(spec: VehicleSpec, steering: Sequence[float] = ()) -> ConstraintRows:
     """Constraint Jacobian J, rate map B and the driven wheel of each row.
 
     The rows are those of :mod:`wheelkin.unified` for ``spec.wheels_at(steering)``, grouped by
@@ -138,7 +149,7 @@ def constraint_rows(spec: VehicleSpec, steering: Sequence[float] = ()
             brow[j] = coeff
             B.append(brow)
             owner.append(j)
-    return np.array(J), np.array(B), np.array(owner)
+    return ConstraintRows(np.array(J), np.array(B), np.array(owner))
 
 
 def dissipation_objective(xi: npt.ArrayLike, xi_pred: npt.ArrayLike, J: npt.ArrayLike,

@@ -62,6 +62,7 @@ import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -79,6 +80,7 @@ __all__ = [
     "MECANUM_ROBOT",
     "OPEN_SOURCE_ROVER",
     "RADON_ULZER",
+    "IdealCommands",
     "VehicleSpec",
     "diff_drive",
     "ideal_commands",
@@ -297,7 +299,7 @@ class VehicleSpec:
         """True if the wheels that are not casters are Swedish (mecanum or omni) wheels."""
         return self.driven_wheels[0].kind == "swedish"
 
-    def steering_of(self, steering: Sequence[float]) -> tuple[float, ...]:
+    def steering_of(self, steering: Sequence[float]) -> np.ndarray:
         """Per wheel of :attr:`wheel_names`: its steering angle from ``steering``
         (``steered_names`` order), 0 for an unsteered wheel."""
         k = len(self.steered_names)
@@ -307,7 +309,7 @@ class VehicleSpec:
                              f"({', '.join(self.steered_names) or 'no steered wheels'}), "
                              f"got shape {angles.shape}")
         where = dict(zip(self.steered_names, angles.tolist(), strict=True))
-        return tuple(where.get(w.name, 0.0) for w in self.driven_wheels)
+        return np.array([where.get(w.name, 0.0) for w in self.driven_wheels])
 
     def wheels_at(self, steering: npt.ArrayLike | None = None, *,
                   casters: bool = False) -> tuple[WheelConstraint, ...]:
@@ -516,8 +518,18 @@ def rover(
     return _finish(name, mass, inertia, body, wheels, (1.0 / 6.0,) * 6, **kwargs)
 
 
+class IdealCommands(NamedTuple):
+    """Wheel rates and steering angles of the ideal kinematic model (see
+    :func:`ideal_commands`)."""
+
+    #: rad/s, shape (n,), ``spec.wheel_names`` order.
+    rates: np.ndarray
+    #: rad, shape (k,), ``spec.steered_names`` order.
+    steering: np.ndarray
+
+
 def ideal_commands(spec: VehicleSpec, twist: npt.ArrayLike,
-                   steering: npt.ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
+                   steering: npt.ArrayLike | None = None) -> IdealCommands:
     r"""Wheel rates (and steering) of the ideal kinematic model for a body twist.
 
     The rates and angles of :func:`wheelkin.unified.steer_for_twist` and
@@ -542,10 +554,9 @@ def ideal_commands(spec: VehicleSpec, twist: npt.ArrayLike,
 
     Returns
     -------
-    rates : ndarray (n,)
-        rad/s, ``spec.wheel_names`` order.
-    steering : ndarray (k,)
-        rad, ``spec.steered_names`` order.
+    IdealCommands
+        ``(rates, steering)``: rad/s, shape (n,), ``spec.wheel_names`` order; rad, shape
+        (k,), ``spec.steered_names`` order.
 
     Examples
     --------
@@ -562,7 +573,7 @@ def ideal_commands(spec: VehicleSpec, twist: npt.ArrayLike,
     else:
         current = tuple(V.shaped("steering", steering, (k,)).reshape(k).tolist())
     rates, angles, _ = ideal_rates(command_table(spec), vx, vy, w, current)
-    return np.array(rates), np.array(angles)
+    return IdealCommands(np.array(rates), np.array(angles))
 
 
 def command_table(spec: VehicleSpec) -> tuple[tuple, ...]:

@@ -41,6 +41,9 @@ class SlipView:
         if not isinstance(fig, Figure):
             raise ValueError(f"fig must be a matplotlib Figure, got {type(fig).__name__}")
         self.fig = fig
+        engine = fig.get_layout_engine()
+        if engine is not None and not engine.adjust_compatible:
+            fig.set_layout_engine(style.fixed_layout())  # the view lays its figure out by hand
         ax = self.ax = fig.add_subplot()
         fig.subplots_adjust(left=0.12, right=0.97, bottom=0.13, top=0.88)
         ax.set_aspect("equal")
