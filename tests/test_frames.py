@@ -659,6 +659,9 @@ def test_se2_log_by_hand():
     # arrays: one row per displacement
     out = frames.se2_log([[3.0, 0.0, 0.0], [0.0, 0.0, 1.0]], 1.0)
     np.testing.assert_allclose(out, [[3.0, 0.0, 0.0], [0.0, 0.0, 1.0]], atol=1e-15)
+    # the default duration is one second in both directions: exp(log(delta)) is delta
+    delta = Pose(0.3, -0.2, 1.1)
+    np.testing.assert_allclose(frames.se2_exp(frames.se2_log(delta)), delta, atol=1e-15)
 
 
 @pytest.mark.parametrize("delta, dt, match", [

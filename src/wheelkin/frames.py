@@ -432,7 +432,7 @@ def icr_array(twists: ArrayLike) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 
 
-def se2_exp(twist: Twist | ArrayLike, dt: float) -> Pose | NDArray[np.float64]:
+def se2_exp(twist: Twist | ArrayLike, dt: float = 1.0) -> Pose | NDArray[np.float64]:
     r"""The body-frame displacement after holding ``twist`` constant for ``dt`` seconds.
 
     Exact (the body moves on a circular arc about the ICR, or straight when
@@ -454,7 +454,8 @@ def se2_exp(twist: Twist | ArrayLike, dt: float) -> Pose | NDArray[np.float64]:
     twist : Twist or array_like, shape (..., 3)
         :math:`(v_x, v_y, \omega)` in m/s and rad/s.
     dt : float
-        Duration in seconds (finite; negative integrates backwards).
+        Duration in seconds (finite; negative integrates backwards); 1 s by default, as
+        :func:`se2_log`'s, so that ``se2_exp(se2_log(delta))`` is ``delta``.
 
     Returns
     -------
