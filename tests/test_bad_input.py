@@ -324,7 +324,7 @@ def _public_callables():
         for name in mod.__all__:
             obj = getattr(mod, name)
             if not callable(obj) or (isinstance(obj, type) and issubclass(obj, tuple)
-                                     and obj.__bases__ == (tuple,)):
+                                     and not getattr(obj, "validates", False)):
                 continue  # constants; NamedTuple results (outputs, not inputs; Pose and
                 # Twist, which validate what they are given, are swept)
             if isinstance(obj, type) and typing.Protocol in obj.__mro__:

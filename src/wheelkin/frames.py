@@ -55,6 +55,7 @@ Twist(vx=0.0, vy=-0.3048, omega=0.0)
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import NamedTuple
 
@@ -109,13 +110,7 @@ __all__ = [
 # --------------------------------------------------------------------------------------------
 
 
-class _PoseFields(NamedTuple):
-    x: float
-    y: float
-    theta: float
-
-
-class Pose(_PoseFields):
+class Pose(NamedTuple):
     """A planar pose in our world frame: position ``x``, ``y`` (m), heading ``theta`` (rad).
 
     ``theta`` is counter-clockwise from world +x. It is stored as given (not wrapped); use
@@ -132,14 +127,9 @@ class Pose(_PoseFields):
     ValueError: y must be a finite number, got nan
     """
 
-    __slots__ = ()
-
-    def __new__(cls, x: float, y: float, theta: float) -> Pose:
-        return super().__new__(cls, v.finite("x", x), v.finite("y", y),
-                               v.finite("theta", theta))
-
-    def _replace(self, **changes: float) -> Pose:
-        return type(self)(**(self._asdict() | changes))
+    x: float
+    y: float
+    theta: float
 
     def as_array(self) -> np.ndarray:
         """``[x, y, theta]`` as a float array of shape (3,)."""
@@ -154,13 +144,7 @@ class Pose(_PoseFields):
         return cls(*arr.tolist())
 
 
-class _TwistFields(NamedTuple):
-    vx: float
-    vy: float
-    omega: float
-
-
-class Twist(_TwistFields):
+class Twist(NamedTuple):
     """A planar twist in our body frame: ``vx``, ``vy`` (m/s), ``omega`` (rad/s, CCW +).
 
     A NamedTuple, like :class:`Pose`: ``vx, vy, omega = twist`` unpacks it, and
@@ -174,14 +158,9 @@ class Twist(_TwistFields):
     ValueError: omega must be a finite number, got inf
     """
 
-    __slots__ = ()
-
-    def __new__(cls, vx: float, vy: float, omega: float) -> Twist:
-        return super().__new__(cls, v.finite("vx", vx), v.finite("vy", vy),
-                               v.finite("omega", omega))
-
-    def _replace(self, **changes: float) -> Twist:
-        return type(self)(**(self._asdict() | changes))
+    vx: float
+    vy: float
+    omega: float
 
     def as_array(self) -> np.ndarray:
         """``[vx, vy, omega]`` as a float array of shape (3,)."""
@@ -194,6 +173,30 @@ class Twist(_TwistFields):
         if arr.ndim != 1:
             raise ValueError(f"twist must have shape (3,), got shape {arr.shape}")
         return cls(*arr.tolist())
+
+
+def _validating_new(cls: type) -> None:
+    """Make a NamedTuple's constructor check that every field is a finite number, naming the
+    field (a NamedTuple may not define ``__new__`` in its body; it is replaced here)."""
+    plain_new = cls.__new__
+    fields = cls._fields
+
+    @functools.wraps(plain_new)  # the signature (x, y, theta) for help() and the docs
+    def __new__(klass, *args: float, **kwargs: float):
+        values = plain_new(klass, *args, **kwargs)
+        return plain_new(klass, *(v.finite(n, x) for n, x in zip(fields, values, strict=True)))
+
+    def _replace(self, **changes: float):  # checked too (the generated one is not)
+        return type(self)(**(self._asdict() | changes))
+
+    cls.__new__ = __new__  # type: ignore[method-assign]
+    cls._replace = _replace  # type: ignore[method-assign]
+    cls._make = classmethod(lambda klass, iterable: klass(*iterable))  # type: ignore[assignment]
+    cls.validates = True  # marks a record the bad-input sweep calls, not only reads
+
+
+_validating_new(Pose)
+_validating_new(Twist)
 
 
 class FirmwarePose(NamedTuple):
