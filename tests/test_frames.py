@@ -696,8 +696,11 @@ def test_pose_rate_is_the_derivative_of_the_exact_motion():
 
 
 def test_pose_rate_by_hand_and_vectorised():
-    r = frames.pose_rate(0.0, [1.0, 0.0, 0.0])
+    r = frames.pose_rate(0.0, Twist(1.0, 0.0, 0.0))
     assert r == (1.0, 0.0, 0.0) and r.x_dot == 1.0
+    # an array twist in, an array out (the module's rule), even for one twist
+    out = frames.pose_rate(0.0, [1.0, 0.0, 0.0])
+    assert isinstance(out, np.ndarray) and out.tolist() == [1.0, 0.0, 0.0]
     out = frames.pose_rate([0.0, math.pi / 2], [[1.0, 0.0, 0.3], [1.0, 0.0, 0.3]])
     np.testing.assert_allclose(out, [[1.0, 0.0, 0.3], [0.0, 1.0, 0.3]], atol=1e-15)
     with pytest.raises(ValueError, match="theta"):

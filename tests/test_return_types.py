@@ -191,3 +191,37 @@ def test_every_sandbox_callable_follows_the_return_rule():
         checked += 1
     assert not broken, "\n".join(broken)
     assert checked > 25
+
+
+def test_state_and_plan_records_are_poses_and_twists():
+    """What a robot, a plan and a follower report: a Pose and a Twist, not bare tuples."""
+    from wheelkin import follower, odometry, sandbox, waypoints
+
+    world = sandbox.World(dt=1 / 60)
+    robot = world.add(sandbox.RADON_ULZER, pose=Pose(0.1, 0.2, 0.3), twist=Twist(0.2, 0, 0.5))
+    world.step()
+    assert type(robot.pose) is Pose and type(robot.twist) is Twist
+    segments = waypoints.plan_segments(waypoints.LAB_WAYPOINTS)
+    assert all(type(s.start) is Pose and type(s.end) is Pose for s in segments)
+    assert type(segments[1].pose_at(0.5)) is Pose
+    assert segments[1].pose_at([0.0, 1.0]).shape == (2, 3)
+    assert segments[1].point_at(0.5).shape == (2,)
+    commands = waypoints.schedule(segments, 0.04, 0.06)
+    assert type(waypoints.planned_pose(commands, 1.0)) is Pose
+    assert waypoints.planned_pose(commands, [1.0, 2.0]).shape == (2, 3)
+    skid = follower.KinematicSkidSteer((0.0, 0.0, 0.0))
+    skid.step(0.01)
+    assert type(skid.pose) is Pose and type(skid.start) is Pose
+    assert type(odometry.pose_update(Pose(0.0, 0.0, 0.0), 0.1, 0.1)) is Pose
+    assert isinstance(odometry.pose_update([0.0, 0.0, 0.0], 0.1, 0.1), np.ndarray)
+    assert type(waypoints.distance_to_walls([0.5, -0.5])) is float
+
+
+def test_optional_results_are_named_too():
+    from wheelkin import diffdrive
+
+    out = diffdrive.speed_from_counts([0, 4, 8, 13, 18], [0.0, 0.01, 0.02, 0.03, 0.04], 0.02,
+                                      return_updates=True)
+    assert type(out) is diffdrive.CountSpeeds
+    assert out.updated.tolist() == [False, False, True, False, True]
+    assert violations(out) == []

@@ -520,3 +520,21 @@ def test_a_geometry_in_metres_and_in_inches_is_the_same_rover():
         assert getattr(inches, d) == pytest.approx(getattr(rover.OSR_GEOMETRY, d), rel=1e-15)
     with pytest.raises(ValueError, match="unit"):
         rover.RoverGeometry(1.0, 1.0, 1.0, 1.0, unit="ft")
+
+
+def test_a_metric_geometry_gives_the_same_command_radii_and_straight_threshold():
+    """The joystick's radii are inches whatever the geometry's unit, and the straight-ahead
+    threshold (250 in) is converted for a metric geometry (a robot builder's review found
+    both mixed with metres)."""
+    si = rover.OSR_GEOMETRY_SI
+    for mapping in ("radius", "curvature", "angle"):
+        assert rover.command_to_radius(50, mapping=mapping, geometry=si) == pytest.approx(
+            rover.command_to_radius(50, mapping=mapping), rel=1e-12)
+    inch = rover.INCH
+    for r in (30.0, 200.0, 249.0, 251.0, 1000.0):  # turns below 250 in, straight above
+        np.testing.assert_allclose(rover.wheel_speeds(r * inch, 10.0, si),
+                                   rover.wheel_speeds(r, 10.0), rtol=1e-12)
+        np.testing.assert_allclose(rover.corner_angles(r * inch, si), rover.corner_angles(r),
+                                   atol=1e-12)
+    assert np.all(rover.corner_angles(251.0 * inch, si) == 0.0)
+    assert np.all(rover.corner_angles(249.0 * inch, si) != 0.0)

@@ -172,7 +172,7 @@ def _radius_in(geometry: RoverGeometry):
 def test_rover_rates_are_the_rover_chapter(data, speed, wheel_radius, dims):
     g = RoverGeometry(*dims)
     radius = data.draw(_radius_in(g))
-    wheels = rover_wheels(g, wheel_radius, -radius * INCH)
+    wheels = rover_wheels(g, wheel_radius, turning_radius=-radius * INCH)
     twist = rover.document_twist(radius, speed, g)
     rim_in_per_s = wheel_rates(wheels, twist) * wheel_radius / INCH
     np.testing.assert_allclose(rim_in_per_s, rover.wheel_speeds(radius, speed, g),

@@ -69,6 +69,7 @@ __all__ = [
     "RADON_ULZER_CONSTANTS",
     "BodyTwist",
     "BodyTwistSteps",
+    "CountSpeeds",
     "DiffDriveConstants",
     "FixedPointWheelSpeeds",
     "SkidSteerWheelSpeeds",
@@ -192,6 +193,16 @@ class BodyTwistSteps(NamedTuple):
 
     v_steps_per_s: Any
     omega_mrad_per_s: Any
+
+
+class CountSpeeds(NamedTuple):
+    """Speeds estimated from encoder counts, and where each estimate was made (see
+    :func:`speed_from_counts`)."""
+
+    #: steps/s at each sample.
+    speed: np.ndarray
+    #: True where a new estimate was made.
+    updated: np.ndarray
 
 
 class SkidSteerWheelSpeeds(NamedTuple):
@@ -847,7 +858,7 @@ def time_to_count(min_steps: float, speed: ArrayLike,
 def speed_from_counts(
         counts: ArrayLike, times: ArrayLike, window: float, min_steps: int = 0,
         timeout: float | None = None, *, return_updates: bool = False,
-) -> NDArray[np.float64] | tuple[NDArray[np.float64], NDArray[np.bool_]]:
+) -> NDArray[np.float64] | CountSpeeds:
     r"""Wheel speed (steps/s) from cumulative encoder counts, as a firmware speedometer does.
 
     The estimator keeps an *anchor* sample :math:`a` (where it last made an estimate). At each
@@ -885,11 +896,11 @@ def speed_from_counts(
 
     Returns
     -------
-    speed : numpy.ndarray, same shape as ``counts``
-        Estimated speed at each sample, steps/s (0 until the first estimate).
-    updated : numpy.ndarray of bool, same shape as ``counts``
-        Only with ``return_updates=True``: True at the samples where a new estimate was made
-        (elsewhere the previous one is held).
+    numpy.ndarray, same shape as ``counts``, or CountSpeeds
+        Estimated speed at each sample, steps/s (0 until the first estimate); with
+        ``return_updates=True`` a :class:`CountSpeeds` ``(speed, updated)``, ``updated``
+        True at the samples where a new estimate was made (elsewhere the previous one is
+        held).
 
     Examples
     --------
@@ -939,5 +950,5 @@ def speed_from_counts(
                 updated[i, j] = True
             out[i, j] = estimate
     if return_updates:
-        return out.reshape(c.shape), updated.reshape(c.shape)
+        return CountSpeeds(out.reshape(c.shape), updated.reshape(c.shape))
     return out.reshape(c.shape)

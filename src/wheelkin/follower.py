@@ -149,14 +149,13 @@ class SideDrivenRobot(Protocol):
         ...
 
 
-def _pose3(name: str, pose: ArrayLike) -> tuple[float, float, float]:
+def _pose3(name: str, pose: ArrayLike) -> Pose:
     if isinstance(pose, Pose):
-        return pose.x, pose.y, pose.theta
+        return pose
     p = v.shaped(name, pose, (3,))
     if p.ndim != 1:
         raise ValueError(f"{name} must have shape (3,), got shape {p.shape}")
-    x, y, theta = p.tolist()
-    return x, y, theta
+    return Pose(*p.tolist())
 
 
 class PathFollower:
@@ -263,7 +262,8 @@ class PathFollower:
     def _carrot(self, seg: Segment, s: float) -> tuple[float, float]:
         sc = max(s, 0.0) + self.lookahead
         if sc <= seg.length:
-            return seg.point_at(sc / seg.length)
+            px, py = seg.point_at(sc / seg.length).tolist()
+            return px, py
         xe, ye, te = seg.end
         extra = sc - seg.length
         return xe + extra * math.cos(te), ye + extra * math.sin(te)
@@ -456,7 +456,7 @@ class FollowerController:
     ----------
     log_t : list of float
         Times of the control ticks (s).
-    log_estimate : list of tuple
+    log_estimate : list of Pose
         The pose estimate at each tick (m, m, rad).
     finish_time : float or None
         When the follower reported the last segment done (s).
@@ -483,7 +483,7 @@ class FollowerController:
         self._last: tuple[float, float] | None = None
         self._next_tick = 0.0
         self.log_t: list[float] = []
-        self.log_estimate: list[tuple[float, float, float]] = []
+        self.log_estimate: list[Pose] = []
         self.finish_time: float | None = None
 
     def rates(self, speed: float, yaw_rate: float) -> SideRates:
@@ -522,7 +522,7 @@ class FollowerController:
             self.estimate = np.array((x, y, theta))
         self._last = (left_angle, right_angle)
         self.log_t.append(t)
-        self.log_estimate.append((x, y, theta))
+        self.log_estimate.append(Pose(x, y, theta))
         speed, yaw_rate = self.follower.command((x, y, theta))
         if self.follower.done and self.finish_time is None:
             self.finish_time = t
@@ -644,6 +644,6 @@ class KinematicSkidSteer:
         return np.array(self._poses)
 
     @property
-    def pose(self) -> tuple[float, float, float]:
+    def pose(self) -> Pose:
         """The pose now (x, y, theta) (m, m, rad; heading not wrapped)."""
-        return self._poses[-1]
+        return Pose(*self._poses[-1])

@@ -567,7 +567,8 @@ def pose_rate(theta: ArrayLike, twist: Twist | ArrayLike) -> PoseRate | np.ndarr
     -------
     PoseRate or numpy.ndarray, shape (..., 3)
         :math:`(\dot x, \dot y, \dot\theta)` in the world frame; a :class:`PoseRate`
-        (a NamedTuple) when ``theta`` is a number and ``twist`` a Twist or shape (3,).
+        (a NamedTuple) when ``theta`` is a number and ``twist`` a Twist, an array otherwise
+        (as every function here: a Twist in, a record out; an array in, an array out).
 
     Examples
     --------
@@ -584,7 +585,7 @@ def pose_rate(theta: ArrayLike, twist: Twist | ArrayLike) -> PoseRate | np.ndarr
     c, s = np.cos(th), np.sin(th)
     out = [_no_negative_zero(np.asarray(o, dtype=float))
            for o in (vx * c - vy * s, vx * s + vy * c, w + 0.0 * th)]
-    if out[0].ndim == 0:
+    if out[0].ndim == 0 and isinstance(twist, Twist):
         return PoseRate(*(float(o) for o in out))
     return np.stack(out, axis=-1)
 

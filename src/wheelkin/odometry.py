@@ -66,7 +66,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as v
 from wheelkin._kernels import arc_factors, arc_step, c_div
-from wheelkin.frames import wrap_angle
+from wheelkin.frames import Pose, wrap_angle
 
 __all__ = [
     "FIRMWARE_TWO_PI_MRAD",
@@ -215,8 +215,9 @@ def chord_factor(dtheta: ArrayLike) -> float | NDArray[np.float64]:
     return float(out) if out.ndim == 0 else out
 
 
-def pose_update(pose: ArrayLike, distance: ArrayLike, dtheta: ArrayLike,
-                method: Literal["exact", "midpoint", "euler"] = "exact") -> NDArray[np.float64]:
+def pose_update(
+        pose: ArrayLike, distance: ArrayLike, dtheta: ArrayLike,
+        method: Literal["exact", "midpoint", "euler"] = "exact") -> Pose | NDArray[np.float64]:
     r"""The pose after one update that moved the mid-point by Δs and turned it by Δθ.
 
     .. math::
@@ -242,7 +243,7 @@ def pose_update(pose: ArrayLike, distance: ArrayLike, dtheta: ArrayLike,
 
     Returns
     -------
-    numpy.ndarray, shape (..., 3)
+    Pose (for a Pose and scalar steps) or numpy.ndarray, shape (..., 3)
 
     Examples
     --------
@@ -265,7 +266,8 @@ def pose_update(pose: ArrayLike, distance: ArrayLike, dtheta: ArrayLike,
                          f"broadcast against pose[..., 0] (shape {p.shape[:-1]})") from None
     with np.errstate(all="ignore"):
         out = _step(p, ds, dth, method)
-    return v.finite_result("pose, distance and dtheta", out)
+    out = v.finite_result("pose, distance and dtheta", out)
+    return Pose(*out.tolist()) if isinstance(pose, Pose) and out.ndim == 1 else out
 
 
 def _step(p: np.ndarray, ds: np.ndarray, dth: np.ndarray, method: str) -> np.ndarray:

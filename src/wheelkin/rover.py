@@ -1,9 +1,16 @@
 r"""The six-wheel, corner-steered rover of JPL's Open Source Rover (OSR).
 
 This module reproduces the rover's controller maths :cite:`osr_controls` in **the document's
-own convention**, so that its numbers can be checked one for one:
+own convention**, so that its numbers can be checked one for one. The one exception is
+:func:`wheel_commands` (with :class:`RoverCommand`): the rover in SI and REP-103, for a
+robot builder.
 
-- lengths in **inches** (any consistent unit works; the defaults are the OSR's inches);
+- lengths in **inches**: the geometry's unit (:class:`RoverGeometry` carries it; the
+  defaults are the OSR's inches) for the wheel functions (:func:`wheel_speeds`,
+  :func:`corner_angles`, :func:`wheel_distances`, :func:`centre_speed`,
+  :func:`min_turning_radius`), always inches for the joystick command
+  (:func:`command_to_radius`, :func:`radius_to_command`), :func:`document_twist` and
+  :func:`sandbox_commands`;
 - a turning radius ``r > 0`` turns **right**, ``r < 0`` turns left (REP-103, and the rest of
   this library, use the opposite sign: :func:`document_twist` converts);
 - wheels numbered 1..6 = LF, LM, LB, RF, RM, RB (left front, left middle, left back, right
@@ -273,7 +280,10 @@ def _scalar_radius(radius) -> float:
     return float(r)
 
 
-def _threshold(straight_threshold) -> float:
+def _threshold(straight_threshold, geometry: RoverGeometry) -> float:
+    """The straight-ahead threshold in the geometry's unit (None: the OSR's 250 in)."""
+    if straight_threshold is None:
+        return STRAIGHT_THRESHOLD * (1.0 if geometry.unit == "in" else INCH)
     t = _validate.finite_array("straight_threshold", straight_threshold, allow_inf=True)
     if t.ndim != 0 or not t > 0:
         raise ValueError(f"straight_threshold must be a number > 0 (inf allowed), got "
@@ -322,7 +332,7 @@ def wheel_distances(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY, *
 
 
 def wheel_speeds(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
-                 straight_threshold: float = STRAIGHT_THRESHOLD, *,
+                 straight_threshold: float | None = None, *,
                  max_corner_angle: float = HARD_STOP) -> np.ndarray:
     r"""The six drive wheels' speeds, wheels LF, LM, LB, RF, RM, RB (the document's 1..6).
 
@@ -345,8 +355,9 @@ def wheel_speeds(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
         The commanded speed ``X`` (any unit: the document's percent, or in/s); broadcast with
         ``radius``. Negative drives backwards.
     geometry : RoverGeometry
-    straight_threshold : float
-        Radii at or beyond this are driven straight (the document's 250 in).
+    straight_threshold : float, optional
+        Radii at or beyond this are driven straight, in the geometry's unit (default: the
+        document's 250 in, converted for a metric geometry).
     max_corner_angle : float
         The corner hard stop (rad); a tighter radius raises ``ValueError``.
 
@@ -370,7 +381,7 @@ def wheel_speeds(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
     g = _geometry(geometry)
     r = _radius(radius, g, max_corner_angle)
     x = _validate.finite_array("speed", speed)
-    threshold = _threshold(straight_threshold)
+    threshold = _threshold(straight_threshold, g)
     r, x = _validate.broadcast(radius=r, speed=x)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0e9, r)[..., None]  # placeholder, replaced below
@@ -381,7 +392,7 @@ def wheel_speeds(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
 
 
 def corner_angles(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
-                  straight_threshold: float = STRAIGHT_THRESHOLD, *,
+                  straight_threshold: float | None = None, *,
                   max_corner_angle: float = HARD_STOP) -> np.ndarray:
     r"""The four corner wheels' steering angles (rad), corners LF, RF, LB, RB.
 
@@ -400,8 +411,9 @@ def corner_angles(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
     radius : float or array
         Turning radius of the body centre (document sign: > 0 turns right; +-inf straight).
     geometry : RoverGeometry
-    straight_threshold : float
-        Radii at or beyond this are driven straight (the document's 250 in).
+    straight_threshold : float, optional
+        Radii at or beyond this are driven straight, in the geometry's unit (default: the
+        document's 250 in, converted for a metric geometry).
     max_corner_angle : float
         The corner hard stop (rad); a tighter radius raises ``ValueError``.
 
@@ -418,7 +430,7 @@ def corner_angles(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
     """
     g = _geometry(geometry)
     r = _radius(radius, g, max_corner_angle)
-    threshold = _threshold(straight_threshold)
+    threshold = _threshold(straight_threshold, g)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0e9, r)[..., None]
     pos = wheel_positions(g)[list(_CORNER_WHEELS)]
@@ -428,7 +440,7 @@ def corner_angles(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
 
 
 def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
-                 straight_threshold: float = STRAIGHT_THRESHOLD, *,
+                 straight_threshold: float | None = None, *,
                  max_corner_angle: float = HARD_STOP) -> float | NDArray[np.float64]:
     r"""Speed of the body centre (the "middle of the rover") when the outer middle wheel gets
     ``speed``.
@@ -450,7 +462,7 @@ def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
     g = _geometry(geometry)
     r = _radius(radius, g, max_corner_angle)
     x = _validate.finite_array("speed", speed)
-    threshold = _threshold(straight_threshold)
+    threshold = _threshold(straight_threshold, g)
     r, x = _validate.broadcast(radius=r, speed=x)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0, np.abs(r))
@@ -479,7 +491,7 @@ def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
         In [-100, 100].
     mapping : {"radius", "curvature", "angle"}
     geometry : RoverGeometry
-        Used by ``"angle"`` only.
+        Used by ``"angle"`` only (in either unit; the result is in inches).
 
     Returns
     -------
@@ -503,7 +515,7 @@ def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
         bad = c[np.abs(c) > COMMAND_LIMIT].flat[0] if c.ndim else command
         raise ValueError(f"command must be in [-100, 100], got {bad!r}")
     _validate.choice("mapping", mapping, _MAPPINGS)
-    g = _geometry(geometry)
+    g = _geometry(geometry).in_unit("in")  # the command's radii are the document's inches
     mag = np.abs(c)
     safe = np.where(mag > 0, mag, 1.0)
     if mapping == "radius":
@@ -547,7 +559,7 @@ def radius_to_command(radius: ArrayLike) -> float | NDArray[np.float64]:
 
 
 def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry = OSR_GEOMETRY,
-               straight_threshold: float = STRAIGHT_THRESHOLD, *,
+               straight_threshold: float | None = None, *,
                max_corner_angle: float = HARD_STOP) -> Twist:
     """The body twist in **our** convention (SI, REP-103: x forward, y left, omega
     counter-clockwise) for a turn commanded in the document's convention.
@@ -577,7 +589,7 @@ def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry
     from wheelkin import frames
 
     g = _geometry(geometry).in_unit("in")  # the document's command is in inches
-    threshold = _threshold(straight_threshold)
+    threshold = _threshold(straight_threshold, g)
     r = _scalar_radius(radius)
     x = _validate.finite("speed_in_per_s", speed_in_per_s)
     v = float(centre_speed(r, x, g, threshold, max_corner_angle=max_corner_angle))
@@ -597,7 +609,7 @@ class SandboxCommand(NamedTuple):
 
 def sandbox_commands(radius: float, speed_in_per_s: float, wheel_radius_in: float,
                      geometry: RoverGeometry = OSR_GEOMETRY,
-                     straight_threshold: float = STRAIGHT_THRESHOLD, *,
+                     straight_threshold: float | None = None, *,
                      max_corner_angle: float = HARD_STOP) -> SandboxCommand:
     """Wheel rates and steering angles for ``wheelkin.sandbox.rover``, from a command in
     the document's convention.

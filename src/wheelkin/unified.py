@@ -17,7 +17,7 @@ symbol                      meaning                                             
 :math:`\delta_i`            steering angle (steered wheels and casters), rad,    ``steering``
                             counter-clockwise positive
 :math:`\psi_i`              rolling direction :math:`\psi_i^0 + \delta_i`        ``direction``
-:math:`r_w`                 wheel radius, m                                      ``radius``
+:math:`r_w`                 wheel radius, m                                      ``wheel_radius``
 :math:`\gamma_i`            Swedish wheels: signed angle from the wheel's axle   ``roller_angle``
                             to the axis of the roller touching the ground,
                             counter-clockwise seen from above, rad
@@ -851,7 +851,7 @@ def mecanum_wheels(geometry: MecanumGeometry) -> tuple[WheelConstraint, ...]:
                  for name, s in zip(MECANUM_WHEEL_NAMES, ROLLER_SIGNS, strict=True))
 
 
-def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: float = 0.06,
+def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: float = 0.06, *,
                  turning_radius: float = math.inf) -> tuple[WheelConstraint, ...]:
     r"""The six-wheel rover of :class:`wheelkin.rover.RoverGeometry`, in metres and REP-103.
 
@@ -869,7 +869,8 @@ def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: floa
         :math:`r_w`, m (> 0); the document gives none: 0.06 m is the sandbox's estimate.
     turning_radius : float
         m, > 0 for a left turn (REP-103), :math:`\pm\infty` straight; at least the corner
-        stops' :func:`wheelkin.rover.min_turning_radius` in size.
+        stops' :func:`wheelkin.rover.min_turning_radius` in size. Keyword-only: it is a
+        length, like ``wheel_radius`` beside it.
 
     Examples
     --------

@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike
 
 from wheelkin import _validate as v
 from wheelkin.diffdrive import wheel_speeds
-from wheelkin.frames import wrap_angle
+from wheelkin.frames import Pose, wrap_angle
 
 __all__ = [
     "LAB_ARC_RADIUS",
@@ -130,7 +130,7 @@ class Segment:
     ----------
     kind : {"straight", "arc", "turn"}
         A straight leg, a quarter circle, or a turn in place.
-    start, end : tuple of float
+    start, end : Pose
         Poses (x, y, theta) in m, m, rad at the two ends. Headings are continuous along a plan
         (each is the previous one plus ``heading_change``), so that they can be compared with
         an unwrapped simulated heading; wrap them with ``wrap_angle`` if you need (-pi, pi].
@@ -142,15 +142,16 @@ class Segment:
         Signed turning radius of the centre (m): > 0 turning left, < 0 turning right,
         ``inf`` for a straight leg, 0 for a turn in place.
     centre : tuple of float or None
-        Centre (x, y) of an arc (m); None otherwise.
+        Centre (x, y) of an arc (m); None otherwise (a tuple: a record holds points as
+        tuples, so that it stays hashable).
     target : int or None
         Index of the waypoint this segment ends on (None for a turn in place, which ends where
         it starts, before the leg to the next waypoint).
     """
 
     kind: str
-    start: tuple[float, float, float]
-    end: tuple[float, float, float]
+    start: Pose
+    end: Pose
     length: float
     heading_change: float
     radius: float
@@ -163,7 +164,7 @@ class Segment:
             p = v.shaped(name, getattr(self, name), (3,))
             if p.ndim != 1:
                 raise ValueError(f"{name} must be a pose (x, y, theta), got shape {p.shape}")
-            object.__setattr__(self, name, tuple(p.tolist()))
+            object.__setattr__(self, name, Pose(*p.tolist()))
         object.__setattr__(self, "length", v.nonnegative("length", self.length))
         object.__setattr__(self, "heading_change",
                            v.finite("heading_change", self.heading_change))
@@ -184,27 +185,30 @@ class Segment:
             raise ValueError(f"target must be a waypoint index >= 0 or None, "
                              f"got {self.target!r}")
 
-    def point_at(self, fraction: float) -> tuple[float, float]:
-        """The point (x, y) (m) at one ``fraction`` in [0, 1] of the segment, as floats.
+    def point_at(self, fraction: float) -> np.ndarray:
+        """The point (x, y) (m) at one ``fraction`` in [0, 1] of the segment, shape (2,).
 
         >>> plan_segments([[0, 0], [2, 0]])[0].point_at(0.25)
-        (0.5, 0.0)
+        array([0.5, 0. ])
         """
         fraction = v.in_range("fraction", fraction, 0.0, 1.0)
         x0, y0, t0 = self.start
         if self.kind == "straight":
             d = fraction * self.length
-            return x0 + d * math.cos(t0), y0 + d * math.sin(t0)
+            return np.array([x0 + d * math.cos(t0), y0 + d * math.sin(t0)])
         if self.kind == "arc":
             theta = t0 + fraction * self.heading_change
-            return (self.centre[0] + self.radius * math.sin(theta),
-                    self.centre[1] - self.radius * math.cos(theta))
-        return x0, y0
+            return np.array([self.centre[0] + self.radius * math.sin(theta),
+                             self.centre[1] - self.radius * math.cos(theta)])
+        return np.array([x0, y0])
 
-    def pose_at(self, fraction: ArrayLike) -> np.ndarray:
-        """Poses (..., 3) at ``fraction`` in [0, 1] of the segment (of its length or angle).
+    def pose_at(self, fraction: ArrayLike) -> Pose | np.ndarray:
+        """The pose at ``fraction`` in [0, 1] of the segment (of its length or angle): a
+        :class:`~wheelkin.frames.Pose` for one fraction, an array (..., 3) for an array.
 
         >>> s = plan_segments([[0, 0], [1, 0]])[0]
+        >>> s.pose_at(0.5)
+        Pose(x=0.5, y=0.0, theta=0.0)
         >>> s.pose_at([0.0, 0.5, 1.0]).round(3).tolist()
         [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]
         """
@@ -224,7 +228,8 @@ class Segment:
         else:
             x = np.full_like(f, x0)
             y = np.full_like(f, y0)
-        return np.stack(np.broadcast_arrays(x, y, theta), axis=-1)
+        out = np.stack(np.broadcast_arrays(x, y, theta), axis=-1) + 0.0
+        return Pose(*out.tolist()) if out.ndim == 1 else out
 
 
 def _snap(value: float) -> float:
@@ -488,8 +493,9 @@ def schedule_times(commands: Iterable[WheelCommand]) -> np.ndarray:
     return np.concatenate([[0.0], np.cumsum([c.duration for c in cmds])])
 
 
-def planned_pose(commands: Iterable[WheelCommand], t: ArrayLike) -> np.ndarray:
-    """Pose (..., 3) of an ideal (non-slipping) robot playing ``commands`` at times ``t`` (s).
+def planned_pose(commands: Iterable[WheelCommand], t: ArrayLike) -> Pose | np.ndarray:
+    """Pose of an ideal (non-slipping) robot playing ``commands`` at times ``t`` (s): a
+    :class:`~wheelkin.frames.Pose` for one time, an array (..., 3) for an array of times.
 
     Before 0 it is the first segment's start, after the last command the last one's end.
 
@@ -507,7 +513,7 @@ def planned_pose(commands: Iterable[WheelCommand], t: ArrayLike) -> np.ndarray:
         if np.any(mask):
             frac = np.clip((tt[mask] - times[i]) / c.duration, 0.0, 1.0)
             out[mask] = c.segment.pose_at(frac)
-    return out
+    return Pose(*out.tolist()) if out.ndim == 1 else out
 
 
 def planned_wheel_angles(commands: Iterable[WheelCommand], t: ArrayLike) -> np.ndarray:
@@ -643,7 +649,7 @@ def distance_to_walls(points: ArrayLike, walls: ArrayLike = LAB_WALLS) -> np.nda
     rel = p[..., None, :] - a
     t = np.clip(np.sum(rel * ab, axis=-1) / np.maximum(np.sum(ab * ab, axis=-1), 1e-300), 0, 1)
     nearest = a + t[..., None] * ab
-    return np.min(np.linalg.norm(p[..., None, :] - nearest, axis=-1), axis=-1)
+    return v.scalar_or_array(np.min(np.linalg.norm(p[..., None, :] - nearest, axis=-1), axis=-1))
 
 
 def waypoint_errors(path: ArrayLike, waypoints: ArrayLike = LAB_WAYPOINTS) -> np.ndarray:

@@ -566,7 +566,11 @@ def ideal_commands(spec: VehicleSpec, twist: npt.ArrayLike,
     """
     if not isinstance(spec, VehicleSpec):
         raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
-    vx, vy, w = (float(x) for x in V.shaped("twist", twist, (3,)).reshape(3))
+    arr = V.shaped("twist", twist, (3,))
+    if arr.shape != (3,):
+        raise ValueError(f"twist must be one twist (vx, vy, omega), shape (3,), got shape "
+                         f"{arr.shape}")
+    vx, vy, w = arr.tolist()
     k = len(spec.steered_names)
     if steering is None:
         current: tuple[float, ...] = (0.0,) * k

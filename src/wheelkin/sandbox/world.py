@@ -47,6 +47,7 @@ import pymunk
 from numpy.typing import ArrayLike
 
 from wheelkin import _validate as V
+from wheelkin.frames import Pose, Twist
 
 from .contact import ContactModel, _Base, _Warm
 from .sensors import Encoder
@@ -326,14 +327,14 @@ class Robot:
 
     # ------------------------------------------------------------------ state
     @property
-    def pose(self) -> tuple[float, float, float]:
+    def pose(self) -> Pose:
         """(x, y, theta): world position of the reference point (m), heading (rad, unwrapped)."""
-        return (self._x, self._y, self._theta)
+        return Pose(self._x, self._y, self._theta)
 
     @property
-    def twist(self) -> tuple[float, float, float]:
+    def twist(self) -> Twist:
         """(vx, vy, omega): body-frame twist (m/s, m/s, rad/s)."""
-        return (self._u, self._v, self._w)
+        return Twist(self._u, self._v, self._w)
 
     @property
     def wheel_angles(self) -> np.ndarray:
