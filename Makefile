@@ -72,6 +72,7 @@ book: vendor
 
 lint: $(STAMP)
 	$(BIN)/ruff check .
+	$(BIN)/mypy
 
 unit: $(STAMP)
 	$(PYTEST) -n 2 tests src/wheelkin --ignore=tests/browser

@@ -53,9 +53,10 @@ def arc_factors(phi: Any) -> tuple[Any, Any]:
     small = np.abs(arr) < SERIES_THRESHOLD
     safe = np.where(small, 1.0, arr)
     p2 = arr * arr
-    s = np.sin(0.5 * safe)
+    half_sin = np.sin(0.5 * safe)
     a = np.where(small, 1.0 - p2 / 6.0 + p2 * p2 / 120.0, np.sin(safe) / safe)
-    b = np.where(small, arr * (0.5 - p2 / 24.0 + p2 * p2 / 720.0), 2.0 * s * s / safe)
+    b = np.where(small, arr * (0.5 - p2 / 24.0 + p2 * p2 / 720.0),
+                 2.0 * half_sin * half_sin / safe)
     return a, b
 
 
@@ -120,12 +121,12 @@ def wrap_angle(angle: Any) -> Any:
         if r <= -math.pi:
             r += _TWO_PI
         return min(r, math.pi)
-    a = np.asarray(angle, dtype=float)
-    inside = (a > -math.pi) & (a <= math.pi)
-    r = np.remainder(a + math.pi, _TWO_PI) - math.pi  # [-pi, pi] after rounding
-    r = np.where(r <= -math.pi, r + _TWO_PI, r)
-    r = np.minimum(r, math.pi)
-    return np.where(inside, a, r)
+    arr = np.asarray(angle, dtype=float)
+    inside = (arr > -math.pi) & (arr <= math.pi)
+    wrapped = np.remainder(arr + math.pi, _TWO_PI) - math.pi  # [-pi, pi] after rounding
+    wrapped = np.where(wrapped <= -math.pi, wrapped + _TWO_PI, wrapped)
+    wrapped = np.minimum(wrapped, math.pi)
+    return np.where(inside, arr, wrapped)
 
 
 def diff_drive_wheel_speeds(v: Any, omega: Any, track_width: Any) -> tuple[Any, Any]:

@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import NamedTuple, Protocol, runtime_checkable
+from typing import NamedTuple, Protocol, cast, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -249,7 +249,7 @@ class PathFollower:
         if seg.kind == "straight":
             return (x - x0) * math.cos(t0) + (y - y0) * math.sin(t0)
         if seg.kind == "arc":
-            cx, cy = seg.centre
+            cx, cy = cast(tuple[float, float], seg.centre)  # an arc has one
             swept = math.remainder(math.atan2(y - cy, x - cx) - math.atan2(y0 - cy, x0 - cx),
                                    2 * math.pi)  # in [-pi, pi]
             return swept * math.copysign(1.0, seg.heading_change) * abs(seg.radius)
@@ -364,7 +364,7 @@ class ScheduleController:
         self.index = 0
         self.switch_times: list[float] = []
         self._next_tick = 0.0
-        self._start_angles = None
+        self._start_angles: np.ndarray | None = None
 
     @property
     def done(self) -> bool:

@@ -57,7 +57,7 @@ from __future__ import annotations
 
 import functools
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -175,7 +175,7 @@ class Twist(NamedTuple):
         return cls(*arr.tolist())
 
 
-def _validating_new(cls: type) -> None:
+def _validating_new(cls: Any) -> None:
     """Make a NamedTuple's constructor check that every field is a finite number, naming the
     field (a NamedTuple may not define ``__new__`` in its body; it is replaced here)."""
     plain_new = cls.__new__
@@ -189,9 +189,9 @@ def _validating_new(cls: type) -> None:
     def _replace(self, **changes: float):  # checked too (the generated one is not)
         return type(self)(**(self._asdict() | changes))
 
-    cls.__new__ = __new__  # type: ignore[method-assign]
-    cls._replace = _replace  # type: ignore[method-assign]
-    cls._make = classmethod(lambda klass, iterable: klass(*iterable))  # type: ignore[assignment]
+    cls.__new__ = __new__
+    cls._replace = _replace
+    cls._make = classmethod(lambda klass, iterable: klass(*iterable))
     cls.validates = True  # marks a record the bad-input sweep calls, not only reads
 
 
@@ -720,6 +720,7 @@ def integrate_twist(twists: ArrayLike, dt: float,
     if tw.ndim != 2:
         raise ValueError(f"twists must have shape (N, 3), got shape {tw.shape}")
     t = v.positive("dt", dt)
+    start: np.ndarray
     if pose0 is None:
         start = np.zeros(3)
     elif isinstance(pose0, Pose):
@@ -728,7 +729,7 @@ def integrate_twist(twists: ArrayLike, dt: float,
         start = v.shaped("pose0", pose0, (3,))
         if start.ndim != 1:
             raise ValueError(f"pose0 must have shape (3,), got shape {start.shape}")
-    steps = se2_exp(tw, t)  # (N, 3) body-frame displacements
+    steps = np.asarray(se2_exp(tw, t))  # (N, 3) body-frame displacements
     headings = start[2] + np.concatenate([[0.0], np.cumsum(steps[:, 2])])
     c, s = np.cos(headings[:-1]), np.sin(headings[:-1])
     world_dx = c * steps[:, 0] - s * steps[:, 1]

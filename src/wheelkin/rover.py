@@ -61,7 +61,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Literal, NamedTuple
+from typing import Literal, NamedTuple, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -595,7 +595,7 @@ def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry
     v = float(centre_speed(r, x, g, threshold, max_corner_angle=max_corner_angle))
     if abs(r) >= threshold:
         r = math.inf
-    return frames.rover_twist(r, v)
+    return cast(Twist, frames.rover_twist(r, v))  # scalars in: a Twist
 
 
 class SandboxCommand(NamedTuple):

@@ -891,8 +891,8 @@ def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: floa
         raise ValueError(f"turning_radius must be one number with |turning_radius| >= "
                          f"{smallest:.6g} m (the corner stops), or +-inf; "
                          f"got {turning_radius!r}")
-    turn = -float(turn) / INCH  # the document's radius: inches, positive to the right
-    corners = dict(zip(rover.CORNER_NAMES, -np.asarray(rover.corner_angles(turn, g)),
+    turn_doc = -float(turn) / INCH  # the document's radius: inches, positive to the right
+    corners = dict(zip(rover.CORNER_NAMES, -np.asarray(rover.corner_angles(turn_doc, g)),
                        strict=True))
     positions = rover.wheel_positions(g) * INCH
     return tuple(

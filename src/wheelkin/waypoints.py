@@ -38,7 +38,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -198,8 +198,9 @@ class Segment:
             return np.array([x0 + d * math.cos(t0), y0 + d * math.sin(t0)])
         if self.kind == "arc":
             theta = t0 + fraction * self.heading_change
-            return np.array([self.centre[0] + self.radius * math.sin(theta),
-                             self.centre[1] - self.radius * math.cos(theta)])
+            cx, cy = cast(tuple[float, float], self.centre)  # an arc has one (checked above)
+            return np.array([cx + self.radius * math.sin(theta),
+                             cy - self.radius * math.cos(theta)])
         return np.array([x0, y0])
 
     def pose_at(self, fraction: ArrayLike) -> Pose | np.ndarray:
@@ -221,7 +222,7 @@ class Segment:
             x = x0 + f * self.length * math.cos(t0)
             y = y0 + f * self.length * math.sin(t0)
         elif self.kind == "arc":
-            cx, cy = self.centre
+            cx, cy = cast(tuple[float, float], self.centre)
             r = self.radius  # signed: the centre is on the left for r > 0
             x = cx + r * np.sin(theta)
             y = cy - r * np.cos(theta)
@@ -314,7 +315,7 @@ def plan_segments(waypoints: ArrayLike, arc_radius: float | None = LAB_ARC_RADIU
         c, s = math.cos(theta), math.sin(theta)
         ahead, left = c * dx + s * dy, -s * dx + c * dy
         if abs(left) <= _TOL and ahead > 0:
-            segments.append(Segment("straight", (x, y, theta), (px, py, theta), ahead, 0.0,
+            segments.append(Segment("straight", Pose(x, y, theta), Pose(px, py, theta), ahead, 0.0,
                                     math.inf, None, i))
         elif arc_radius is not None and ahead > _TOL and abs(ahead - abs(left)) <= _TOL:
             if abs(ahead - arc_radius) > _TOL:
@@ -326,17 +327,17 @@ def plan_segments(waypoints: ArrayLike, arc_radius: float | None = LAB_ARC_RADIU
             sign = 1.0 if left > 0 else -1.0
             centre = (_snap(x - sign * arc_radius * s), _snap(y + sign * arc_radius * c))
             dtheta = sign * math.pi / 2
-            segments.append(Segment("arc", (x, y, theta), (px, py, theta + dtheta),
+            segments.append(Segment("arc", Pose(x, y, theta), Pose(px, py, theta + dtheta),
                                     arc_radius * math.pi / 2, dtheta, sign * arc_radius,
                                     centre, i))
             theta += dtheta
         else:
             dtheta = float(wrap_angle(math.atan2(left, ahead)))
-            segments.append(Segment("turn", (x, y, theta), (x, y, theta + dtheta), 0.0, dtheta,
-                                    0.0, None, None))
+            segments.append(Segment("turn", Pose(x, y, theta), Pose(x, y, theta + dtheta), 0.0,
+                                    dtheta, 0.0, None, None))
             theta += dtheta
             dist = math.hypot(dx, dy)
-            segments.append(Segment("straight", (x, y, theta), (px, py, theta), dist, 0.0,
+            segments.append(Segment("straight", Pose(x, y, theta), Pose(px, py, theta), dist, 0.0,
                                     math.inf, None, i))
         x, y = px, py
     return segments
