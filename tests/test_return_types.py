@@ -225,3 +225,26 @@ def test_optional_results_are_named_too():
     assert type(out) is diffdrive.CountSpeeds
     assert out.updated.tolist() == [False, False, True, False, True]
     assert violations(out) == []
+
+
+def test_a_pose_given_as_a_pose_comes_back_as_one():
+    """Second cold review: the covariance step and the follower's estimate."""
+    from wheelkin import diffdrive, follower, odometry, waypoints
+
+    step = odometry.propagate_covariance(Pose(0.0, 0.0, 0.0), np.zeros((3, 3)), 0.1, 0.12, 0.3,
+                                         1e-4, 1e-4)
+    assert type(step.pose) is Pose
+    as_array = odometry.propagate_covariance((0.0, 0.0, 0.0), np.zeros((3, 3)), 0.1, 0.12, 0.3,
+                                             1e-4, 1e-4)
+    np.testing.assert_array_equal(as_array.pose, np.asarray(step.pose))
+    segments = waypoints.plan_segments(waypoints.LAB_WAYPOINTS)
+    robot = follower.KinematicSkidSteer(segments[0].start)
+    controller = follower.FollowerController(robot, follower.PathFollower(segments),
+                                             wheel_radius=0.04, track_width=0.12)
+    for k in range(3):
+        controller(k * controller.period)
+        robot.step(controller.period)
+    assert type(controller.estimate) is Pose
+    assert all(type(p) is Pose for p in controller.log_estimate)
+    constants = diffdrive.DiffDriveConstants(np.int64(85), np.int64(8043))
+    assert type(constants.track_width_mm) is int and type(constants.track_width) is float

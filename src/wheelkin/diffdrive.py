@@ -129,6 +129,7 @@ class DiffDriveConstants:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | np.integer) or value <= 0:
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
+            object.__setattr__(self, name, int(value))  # a Python int, never a NumPy scalar
 
     @property
     def track_width(self) -> float:

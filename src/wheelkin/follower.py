@@ -454,6 +454,8 @@ class FollowerController:
 
     Attributes
     ----------
+    estimate : Pose
+        The pose estimate now (m, m, rad).
     log_t : list of float
         Times of the control ticks (s).
     log_estimate : list of Pose
@@ -479,7 +481,7 @@ class FollowerController:
         self.max_wheel_rate = (None if max_wheel_rate is None else
                                v.positive("max_wheel_rate", max_wheel_rate))
         start = follower.segments[0].start if pose is None else pose
-        self.estimate = np.array(_pose3("pose", start), dtype=float)
+        self.estimate = _pose3("pose", start)
         self._last: tuple[float, float] | None = None
         self._next_tick = 0.0
         self.log_t: list[float] = []
@@ -512,14 +514,14 @@ class FollowerController:
         if not (math.isfinite(left_angle) and math.isfinite(right_angle)):
             raise ValueError("robot.encoder_angles must be finite, got "
                              f"{self.robot.encoder_angles!r}")
-        x, y, theta = self.estimate.tolist()
+        x, y, theta = self.estimate
         if self._last is not None:
             r = self.wheel_radius
             ds_left = r * (left_angle - self._last[0])
             ds_right = r * (right_angle - self._last[1])
             x, y, theta = arc_step(x, y, theta, 0.5 * (ds_left + ds_right),
                                    (ds_right - ds_left) / self.odometry_track_width)
-            self.estimate = np.array((x, y, theta))
+            self.estimate = Pose(x, y, theta)
         self._last = (left_angle, right_angle)
         self.log_t.append(t)
         self.log_estimate.append(Pose(x, y, theta))

@@ -900,7 +900,7 @@ class StepJacobians(NamedTuple):
 class PoseCovariance(NamedTuple):
     """A pose (x, y, θ) in m, m, rad and its 3 x 3 covariance (m², m·rad, rad²)."""
 
-    pose: np.ndarray
+    pose: Pose | np.ndarray
     covariance: np.ndarray
 
 
@@ -1117,7 +1117,8 @@ def propagate_covariance(pose: ArrayLike, covariance: ArrayLike, delta_left: flo
     Returns
     -------
     PoseCovariance
-        ``pose`` (3,) after the step and its ``covariance`` (3, 3), symmetric.
+        ``pose`` after the step (a Pose for a Pose, else an array (3,)) and its
+        ``covariance`` (3, 3), symmetric.
 
     Examples
     --------
@@ -1143,7 +1144,8 @@ def propagate_covariance(pose: ArrayLike, covariance: ArrayLike, delta_left: flo
     q = np.diag([kl * abs(left), kr * abs(right)])
     new = _covariance_step(f_pose, sigma, f_wheels @ q @ f_wheels.T)
     x, y, theta = _arc_step(float(p[0]), float(p[1]), float(p[2]), ds, dth)
-    return PoseCovariance(np.array([x, y, theta]), new)
+    after = Pose(x, y, theta) if isinstance(pose, Pose) else np.array([x, y, theta])
+    return PoseCovariance(after, new)
 
 
 def _noise_model(track_width, k_left, k_right) -> tuple[float, float, float]:
