@@ -141,9 +141,7 @@ def missing_annotations(package: str) -> list[str]:
             problems.append(f"{name}: {', '.join(missing)}")
     for name, cls in public_classes(package):
         if _is_namedtuple(cls):  # the fields are the constructor's parameters
-            notes = {}  # a validating NamedTuple subclass (Pose, Twist) inherits its fields
-            for klass in reversed(cls.__mro__):
-                notes |= inspect.get_annotations(klass)
+            notes = inspect.get_annotations(cls)
             missing = [f for f in cls._fields if f not in notes]
             if missing:
                 problems.append(f"{name}: fields {', '.join(missing)}")

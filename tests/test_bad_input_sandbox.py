@@ -128,6 +128,18 @@ def _is_result(obj) -> bool:
     return isinstance(obj, type) and issubclass(obj, tuple) and obj.__bases__ == (tuple,)
 
 
+def _public_callables():
+    """(qualname, object) for each public function and class the sandbox defines (not its
+    re-exports, not the NamedTuples it returns)."""
+    for mod_name in SANDBOX_MODULES:
+        mod = _mod(mod_name)
+        for name in mod.__all__:
+            obj = getattr(mod, name)
+            if (callable(obj) and getattr(obj, "__module__", "") == mod.__name__
+                    and not _is_result(obj)):
+                yield f"{mod_name}.{name}", obj
+
+
 def _entries():
     """qualname -> make: ``make()`` returns the callable to sweep: the public callable
     itself, a method bound to a fresh object, or a wrapper that steps the world after the
@@ -249,16 +261,7 @@ def _entries():
         call.__signature__ = inspect.signature(driver.__call__)
         return call
 
-    plain = {}
-    for mod_name in SANDBOX_MODULES:
-        mod = _mod(mod_name)
-        for name in mod.__all__:
-            obj = getattr(mod, name)
-            if (not callable(obj) or getattr(obj, "__module__", "") != mod.__name__
-                    or _is_result(obj)):
-                continue
-            plain[f"{mod_name}.{name}"] = obj
-    entries = {q: (lambda obj=obj: obj) for q, obj in plain.items()}
+    entries = {q: (lambda obj=obj: obj) for q, obj in _public_callables()}
     entries |= {
         "render.draw_vehicle": lambda: drawn(render.draw_vehicle),
         "render.VehicleDrawing": lambda: drawn(render.VehicleDrawing),
@@ -480,19 +483,13 @@ def _public_methods(cls) -> list[str]:
 def test_every_public_callable_and_method_is_swept():
     """A new public function, class or method of the sandbox is in the sweep (or fails here)."""
     missing = []
-    for mod_name in SANDBOX_MODULES:
-        mod = _mod(mod_name)
-        for name in mod.__all__:
-            obj = getattr(mod, name)
-            if (not callable(obj) or getattr(obj, "__module__", "") != mod.__name__
-                    or _is_result(obj)):
-                continue
-            if f"{mod_name}.{name}" not in _ENTRIES:
-                missing.append(f"{mod_name}.{name}")
-            if isinstance(obj, type) and typing.Protocol not in obj.__mro__:
-                for method in _public_methods(obj):
-                    if f"{mod_name}.{name}.{method}" not in _ENTRIES and method != "replace":
-                        missing.append(f"{mod_name}.{name}.{method}")
+    for qualname, obj in _public_callables():
+        if qualname not in _ENTRIES:
+            missing.append(qualname)
+        if isinstance(obj, type) and typing.Protocol not in obj.__mro__:
+            for method in _public_methods(obj):
+                if f"{qualname}.{method}" not in _ENTRIES and method != "replace":
+                    missing.append(f"{qualname}.{method}")
     assert not missing, missing
 
 

@@ -92,10 +92,7 @@ class ArmAngle(NamedTuple):
     worst_error: float
 
 
-def _out(value):
-    """A 0-d array as a float, anything else unchanged."""
-    arr = np.asarray(value)
-    return float(arr) if arr.ndim == 0 else arr
+_out = V.scalar_or_array  # one quantity: a float for 0-d, else the array
 
 
 def _twist(columns: np.ndarray) -> Twist | np.ndarray:

@@ -152,8 +152,7 @@ RADON_ULZER_CONSTANTS = DiffDriveConstants(track_width_mm=85, steps_per_m=RADON_
 # Helpers
 # --------------------------------------------------------------------------------------------
 
-def _out(arr: np.ndarray):
-    return float(arr) if arr.ndim == 0 else arr
+_out = _v.scalar_or_array  # one quantity: a float for 0-d, else the array
 
 
 def _broadcast(**arrays) -> list[np.ndarray]:

@@ -127,8 +127,11 @@ class Pose(NamedTuple):
     ValueError: y must be a finite number, got nan
     """
 
+    #: m, world +x (east).
     x: float
+    #: m, world +y (north).
     y: float
+    #: rad, counter-clockwise from world +x (not wrapped).
     theta: float
 
     def as_array(self) -> np.ndarray:
@@ -158,8 +161,11 @@ class Twist(NamedTuple):
     ValueError: omega must be a finite number, got inf
     """
 
+    #: m/s, forward (body +x).
     vx: float
+    #: m/s, to the left (body +y).
     vy: float
+    #: rad/s, counter-clockwise positive.
     omega: float
 
     def as_array(self) -> np.ndarray:
