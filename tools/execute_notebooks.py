@@ -27,7 +27,7 @@ warning on stderr; the message names the notebook and the cell.
 Figures are checked (``wheelkin.style.check_figure``: text too small, overlapping, or leaving
 the figure) in every notebook that calls ``wheelkin.style.setup()``: the kernel runs with
 ``WHEELKIN_CHECK_FIGURES=1``, and ``style.setup()`` then checks every figure a cell shows and
-``wheelkin.animation.show`` the first and last frame of every animation; a problem is an
+``wheelkin.animation.show`` every frame of every animation; a problem is an
 error in that cell (``FigureCheckError: ...`` naming the texts). Notebooks still in
 first-edition form do not call ``style.setup()`` and are not checked. ``--no-figure-check``
 turns the check off for a run.

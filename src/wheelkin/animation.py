@@ -97,6 +97,7 @@ def to_html(
     default_mode: str = "loop",
     max_bytes: int = MAX_BYTES,
     colors: int | None = 256,
+    check: bool | None = None,
 ) -> str:
     """Render ``anim`` to self-contained HTML with a stable id and alt text.
 
@@ -120,6 +121,11 @@ def to_html(
         Re-encode every frame as a palette PNG with this many colours (2..256): line drawings
         lose nothing visible and the frames shrink about threefold. ``None`` keeps matplotlib's
         full-colour frames.
+    check : bool or None
+        Check every frame with :func:`wheelkin.style.check_figure` as it is written, and raise
+        :class:`wheelkin.style.FigureCheckError` naming the animation, the frame and the
+        problem. ``None`` (default): only when the figure check is on
+        (:func:`wheelkin.style.checking`); ``True``: always; ``False``: never.
     """
     if not isinstance(anim, Animation):
         raise ValueError(f"anim must be a matplotlib Animation, got {type(anim).__name__}")
@@ -127,11 +133,14 @@ def to_html(
         raise ValueError("alt must be a non-empty description of the animation")
     if default_mode not in ("loop", "once", "reflect"):
         raise ValueError(f"default_mode must be 'loop', 'once' or 'reflect', got {default_mode!r}")
+    if check is not None and not isinstance(check, bool):
+        raise ValueError(f"check must be True, False or None, got {check!r}")
     new_id = stable_id(name)
     from wheelkin import style
 
     try:
-        raw = _jshtml_checked(anim, name, fps=fps, default_mode=default_mode)
+        raw = _jshtml_checked(anim, name, style.checking() if check is None else check,
+                              fps=fps, default_mode=default_mode)
         smallest = style.min_font_pt(anim._fig)
         fig_dpi = anim._fig.dpi
     finally:
@@ -165,10 +174,10 @@ def to_html(
     return out
 
 
-def _jshtml_checked(anim: Animation, name: str, **kwargs) -> str:
-    """``anim.to_jshtml(**kwargs)``; with the figure check on (:func:`wheelkin.style.checking`),
-    the first and the last frame are checked as they are written, and a problem raises
-    :class:`wheelkin.style.FigureCheckError` naming the animation and the frame.
+def _jshtml_checked(anim: Animation, name: str, check: bool, **kwargs) -> str:
+    """``anim.to_jshtml(**kwargs)``; with ``check``, every frame is checked as it is written,
+    and a problem raises :class:`wheelkin.style.FigureCheckError` naming the animation and the
+    frame ("first frame", "frame 7", "last frame").
 
     The check wraps the ``grab_frame`` of whichever writer ``anim.save`` is given (matplotlib's
     ``HTMLWriter`` or a subclass with its own ``grab_frame``, like the sandbox's), for this
@@ -176,9 +185,9 @@ def _jshtml_checked(anim: Animation, name: str, **kwargs) -> str:
     """
     from wheelkin import style
 
-    if not style.checking():
+    if not check:
         return anim.to_jshtml(embed_frames=True, **kwargs)
-    found: dict[str, list[str]] = {}
+    found: list[list[str]] = []
     save = anim.save
 
     def checked_save(*args, writer=None, **save_kwargs):
@@ -188,8 +197,7 @@ def _jshtml_checked(anim: Animation, name: str, **kwargs) -> str:
             def grab_frame(**savefig_kwargs):
                 out = grab(**savefig_kwargs)
                 # The frame was just drawn: measure its texts without drawing it again.
-                found["first" if "first" not in found else "last"] = style.check_figure(
-                    writer.fig, draw=False)
+                found.append(style.check_figure(writer.fig, draw=False))
                 return out
 
             writer.grab_frame = grab_frame
@@ -200,14 +208,17 @@ def _jshtml_checked(anim: Animation, name: str, **kwargs) -> str:
         raw = anim.to_jshtml(embed_frames=True, **kwargs)
     finally:
         del anim.save
-    problems = [f"{frame} frame: {p}" for frame in ("first", "last") for p in found.get(frame, [])]
+    last = len(found) - 1
+    problems = [f"{'first frame' if k == 0 else 'last frame' if k == last else f'frame {k}'}: {p}"
+                for k, frame in enumerate(found) for p in frame]
     if problems:
         raise style.FigureCheckError(f"animation {name!r}: " + "; ".join(problems))
     return raw
 
 
 def show(anim: Animation, **kwargs: Any) -> HTML:
-    """Display ``anim`` in a notebook as a kernel-free player (see :func:`to_html`)."""
+    """Display ``anim`` in a notebook as a kernel-free player (see :func:`to_html`; the book's
+    notebooks use :func:`wheelkin.display.play`, which always checks the frames)."""
     from IPython.display import HTML
 
     return HTML(to_html(anim, **kwargs))
