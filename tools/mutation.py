@@ -60,7 +60,7 @@ MUTANTS = [
      "vx_a, vy_a, w_a = shift_twist(vx_a, vy_a, w_a, c[0], c[1])",
      "vx_a, vy_a, w_a = shift_twist(vx_a, vy_a, w_a, -c[0], -c[1])"),
     ("mecanum", "mecanum", "desaturate: limit ignored",
-     "return _kernels.desaturate(rates, v.positive(\"max_rate\", max_rate))",
+     "return _kernels.desaturate(rates, V.positive(\"max_rate\", max_rate))",
      "return rates"),
     ("odometry", "odometry", "body motion: half track",
      "return BodyMotion(0.5 * (left + right), (right - left) / w)",

@@ -30,8 +30,10 @@ __all__ = [
     "finite_result",
     "in_range",
     "nonnegative",
+    "pose",
     "positive",
     "shaped",
+    "twist",
 ]
 
 
@@ -124,6 +126,40 @@ def shaped(name: str, value, trailing: Sequence[int], *, allow_inf: bool = False
     if arr.ndim < k or tuple(arr.shape[arr.ndim - k:]) != tuple(trailing):
         want = ", ".join(str(t) for t in trailing)
         raise ValueError(f"{name} must have shape (..., {want}), got shape {arr.shape}")
+    return arr
+
+
+def pose(name: str, value) -> np.ndarray:
+    """One pose ``(x, y, theta)`` (a :class:`~wheelkin.frames.Pose` or an array_like of shape
+    (3,)) as a finite float array of shape (3,); a stack of poses is refused (use
+    :func:`shaped` with ``(3,)`` where one is meant). The one message for a pose's shape.
+
+    >>> pose("pose", (1, 2, 0.5))
+    array([1. , 2. , 0.5])
+    >>> pose("goal", [[0, 0, 0]])
+    Traceback (most recent call last):
+    ...
+    ValueError: goal must have shape (3,): one pose (x, y, theta), got shape (1, 3)
+    """
+    return _one_of_three(name, value, "pose (x, y, theta)")
+
+
+def twist(name: str, value) -> np.ndarray:
+    """One twist ``(vx, vy, omega)`` (a :class:`~wheelkin.frames.Twist` or an array_like of
+    shape (3,)) as a finite float array of shape (3,). The one message for a twist's shape.
+
+    >>> twist("twist", [0.5, 0.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: twist must have shape (3,): one twist (vx, vy, omega), got shape (2,)
+    """
+    return _one_of_three(name, value, "twist (vx, vy, omega)")
+
+
+def _one_of_three(name: str, value, what: str) -> np.ndarray:
+    arr = finite_array(name, value)
+    if arr.shape != (3,):
+        raise ValueError(f"{name} must have shape (3,): one {what}, got shape {arr.shape}")
     return arr
 
 

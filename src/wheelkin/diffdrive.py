@@ -56,7 +56,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _kernels
-from wheelkin import _validate as _v
+from wheelkin import _validate as V
 from wheelkin._kernels import c_div, diff_drive_wheel_speeds
 from wheelkin.units import RADON_ULZER_STEPS_PER_M
 
@@ -152,11 +152,11 @@ RADON_ULZER_CONSTANTS = DiffDriveConstants(track_width_mm=85, steps_per_m=RADON_
 # Helpers
 # --------------------------------------------------------------------------------------------
 
-_out = _v.scalar_or_array  # one quantity: a float for 0-d, else the array
+_out = V.scalar_or_array  # one quantity: a float for 0-d, else the array
 
 
 def _broadcast(**arrays) -> list[np.ndarray]:
-    return _v.broadcast(**{name: _v.finite_array(name, value)
+    return V.broadcast(**{name: V.finite_array(name, value)
                            for name, value in arrays.items()})
 
 
@@ -246,7 +246,7 @@ def wheel_speeds(v: ArrayLike, omega: ArrayLike, track_width: float) -> WheelSpe
     array([0.1  , 0.115])
     """
     v_arr, w_arr = _broadcast(v=v, omega=omega)
-    left, right = diff_drive_wheel_speeds(v_arr, w_arr, _v.positive("track_width", track_width))
+    left, right = diff_drive_wheel_speeds(v_arr, w_arr, V.positive("track_width", track_width))
     return WheelSpeeds(_out(left), _out(right))
 
 
@@ -281,7 +281,7 @@ def desaturate(v_left: ArrayLike, v_right: ArrayLike, max_speed: float) -> Wheel
     """
     left, right = _broadcast(v_left=v_left, v_right=v_right)
     out = _kernels.desaturate(np.stack([left, right], axis=-1),
-                              _v.positive("max_speed", max_speed))
+                              V.positive("max_speed", max_speed))
     return WheelSpeeds(_out(out[..., 0]), _out(out[..., 1]))
 
 
@@ -310,7 +310,7 @@ def body_twist(v_left: ArrayLike, v_right: ArrayLike, track_width: float) -> Bod
     BodyTwist(v=0.2, omega=2.0)
     """
     left, right = _broadcast(v_left=v_left, v_right=v_right)
-    w = _v.positive("track_width", track_width)
+    w = V.positive("track_width", track_width)
     return BodyTwist(_out(0.5 * (left + right)), _out((right - left) / w))
 
 
@@ -378,8 +378,8 @@ def skid_steer_body_twist(fl: ArrayLike, fr: ArrayLike, rl: ArrayLike, rr: Array
 # --------------------------------------------------------------------------------------------
 
 def _firmware_constants(track_width_mm, steps_per_m) -> tuple[float, float]:
-    return (_v.positive("track_width_mm", track_width_mm),
-            _v.positive("steps_per_m", steps_per_m))
+    return (V.positive("track_width_mm", track_width_mm),
+            V.positive("steps_per_m", steps_per_m))
 
 
 def wheel_speeds_steps(
@@ -734,7 +734,7 @@ def wheel_speeds_steps_int32(v_steps_per_s: ArrayLike, omega_mrad_per_s: ArrayLi
     >>> wheel_speeds_steps_int32(0, 3142, method="q16")            # exact: -1074.02, 1074.02
     FixedPointWheelSpeeds(left=-1074, right=1074, overflow=False)
     """
-    _v.choice("method", method, INT32_METHODS)
+    V.choice("method", method, INT32_METHODS)
     v_int = _integers("v_steps_per_s", v_steps_per_s, (INT16_MIN, INT16_MAX))
     w_int = _integers("omega_mrad_per_s", omega_mrad_per_s, (INT16_MIN, INT16_MAX))
     try:
@@ -812,13 +812,13 @@ def speed_resolution(window: ArrayLike, steps_per_m: float) -> float | NDArray[n
     >>> print(f"{speed_resolution(0.010, 8043) * 1000:.2f} mm/s")
     12.43 mm/s
     """
-    t = _v.finite_array("window", window)
+    t = V.finite_array("window", window)
     if np.any(t <= 0):
         raise ValueError(f"window must be > 0 s, got {window!r}")
-    k = _v.positive("steps_per_m", steps_per_m)
+    k = V.positive("steps_per_m", steps_per_m)
     with np.errstate(all="ignore"):
         out = 1.0 / (t * k)
-    return _out(_v.finite_result("window and steps_per_m", out))
+    return _out(V.finite_result("window and steps_per_m", out))
 
 
 def time_to_count(min_steps: float, speed: ArrayLike,
@@ -845,14 +845,14 @@ def time_to_count(min_steps: float, speed: ArrayLike,
     >>> print(f"{time_to_count(6, 0.05, 8043) * 1000:.1f} ms")
     14.9 ms
     """
-    m = _v.positive("min_steps", min_steps)
-    s = _v.finite_array("speed", speed)
+    m = V.positive("min_steps", min_steps)
+    s = V.finite_array("speed", speed)
     if np.any(s == 0):
         raise ValueError(f"speed must be non-zero (a wheel at rest never counts), got {speed!r}")
-    k = _v.positive("steps_per_m", steps_per_m)
+    k = V.positive("steps_per_m", steps_per_m)
     with np.errstate(all="ignore"):
         out = m / (k * np.abs(s))
-    return _out(_v.finite_result("speed and steps_per_m", out))
+    return _out(V.finite_result("speed and steps_per_m", out))
 
 
 def speed_from_counts(
@@ -911,23 +911,23 @@ def speed_from_counts(
     >>> speed_from_counts(counts, times, window=0.02)
     array([  0.,   0., 400., 400., 500.])
     """
-    c = _v.finite_array("counts", counts)
-    t = _v.finite_array("times", times)
+    c = V.finite_array("counts", counts)
+    t = V.finite_array("times", times)
     if c.ndim not in (1, 2) or c.shape[0] < 1:
         raise ValueError(f"counts must have shape (N,) or (N, k) with N >= 1, got {c.shape}")
     if t.shape != (c.shape[0],):
         raise ValueError(f"times must have shape ({c.shape[0]},) to match counts, got {t.shape}")
     if t.size > 1 and np.any(np.diff(t) <= 0):
         raise ValueError("times must be strictly increasing")
-    win = _v.nonnegative("window", window)
+    win = V.nonnegative("window", window)
     if not isinstance(return_updates, bool):
         raise ValueError(f"return_updates must be True or False, got {return_updates!r}")
-    if isinstance(min_steps, bool) or not float(_v.nonnegative("min_steps", min_steps)
+    if isinstance(min_steps, bool) or not float(V.nonnegative("min_steps", min_steps)
                                                 ).is_integer():
         raise ValueError(f"min_steps must be a whole number >= 0, got {min_steps!r}")
     m = float(min_steps)
     if timeout is not None:
-        tmo = _v.positive("timeout", timeout)
+        tmo = V.positive("timeout", timeout)
         if tmo < win:
             raise ValueError(f"timeout must be >= window ({win:g} s), got {timeout!r}")
     else:

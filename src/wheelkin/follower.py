@@ -38,7 +38,7 @@ from typing import NamedTuple, Protocol, cast, runtime_checkable
 import numpy as np
 from numpy.typing import ArrayLike
 
-from wheelkin import _validate as v
+from wheelkin import _validate as V
 from wheelkin._kernels import arc_step, diff_drive_wheel_speeds, wrap_angle
 from wheelkin.frames import Pose
 from wheelkin.waypoints import (
@@ -91,7 +91,7 @@ class DrivenWheel:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str):
             raise TypeError(f"name must be a str, got {type(self.name).__name__}")
-        p = v.shaped("position", self.position, (2,))
+        p = V.shaped("position", self.position, (2,))
         if p.ndim != 1:
             raise ValueError(f"position must have shape (2,), got shape {p.shape}")
         object.__setattr__(self, "position", (float(p[0]), float(p[1])))
@@ -152,10 +152,7 @@ class SideDrivenRobot(Protocol):
 def _pose3(name: str, pose: ArrayLike) -> Pose:
     if isinstance(pose, Pose):
         return pose
-    p = v.shaped(name, pose, (3,))
-    if p.ndim != 1:
-        raise ValueError(f"{name} must have shape (3,), got shape {p.shape}")
-    return Pose(*p.tolist())
+    return Pose(*V.pose(name, pose).tolist())
 
 
 class PathFollower:
@@ -216,14 +213,14 @@ class PathFollower:
                  min_turn_rate: float = 0.2, heading_tolerance: float = 0.01,
                  approach_gain: float = 2.0, min_speed: float = 0.02) -> None:
         self.segments = validate_segments(segments)
-        self.speed = v.positive("speed", speed)
-        self.lookahead = v.positive("lookahead", lookahead)
-        self.heading_gain = v.positive("heading_gain", heading_gain)
-        self.max_turn_rate = v.positive("max_turn_rate", max_turn_rate)
-        self.min_turn_rate = v.in_range("min_turn_rate", min_turn_rate, 0.0, self.max_turn_rate)
-        self.heading_tolerance = v.positive("heading_tolerance", heading_tolerance)
-        self.approach_gain = v.positive("approach_gain", approach_gain)
-        self.min_speed = v.in_range("min_speed", min_speed, 0.0, self.speed)
+        self.speed = V.positive("speed", speed)
+        self.lookahead = V.positive("lookahead", lookahead)
+        self.heading_gain = V.positive("heading_gain", heading_gain)
+        self.max_turn_rate = V.positive("max_turn_rate", max_turn_rate)
+        self.min_turn_rate = V.in_range("min_turn_rate", min_turn_rate, 0.0, self.max_turn_rate)
+        self.heading_tolerance = V.positive("heading_tolerance", heading_tolerance)
+        self.approach_gain = V.positive("approach_gain", approach_gain)
+        self.min_speed = V.in_range("min_speed", min_speed, 0.0, self.speed)
         if self.min_speed <= 0:
             raise ValueError(f"min_speed must be in (0, {self.speed:g}], got {min_speed!r}")
         self.index = 0
@@ -358,8 +355,8 @@ class ScheduleController:
         self._sides = _Sides(robot)
         self.robot = robot
         self.commands = validate_commands(commands)
-        self.switch = v.choice("switch", switch, ("time", "encoders"))
-        self.period = v.positive("period", period)
+        self.switch = V.choice("switch", switch, ("time", "encoders"))
+        self.period = V.positive("period", period)
         self._times = schedule_times(self.commands)
         self.index = 0
         self.switch_times: list[float] = []
@@ -384,7 +381,7 @@ class ScheduleController:
 
     def __call__(self, t: float, world: object = None) -> None:
         """Set the robot's wheel rates for time ``t`` (s); ``world`` may give the step ``dt``."""
-        t = v.finite("t", t)
+        t = V.finite("t", t)
         if self.done:
             self.robot.set_side_rates(0.0, 0.0)
             return
@@ -473,13 +470,13 @@ class FollowerController:
         if not isinstance(follower, PathFollower):
             raise TypeError(f"follower must be a PathFollower, got {type(follower).__name__}")
         self.follower = follower
-        self.wheel_radius = v.positive("wheel_radius", wheel_radius)
-        self.track_width = v.positive("track_width", track_width)
+        self.wheel_radius = V.positive("wheel_radius", wheel_radius)
+        self.track_width = V.positive("track_width", track_width)
         self.odometry_track_width = (self.track_width if odometry_track_width is None else
-                                     v.positive("odometry_track_width", odometry_track_width))
-        self.period = v.positive("period", period)
+                                     V.positive("odometry_track_width", odometry_track_width))
+        self.period = V.positive("period", period)
         self.max_wheel_rate = (None if max_wheel_rate is None else
-                               v.positive("max_wheel_rate", max_wheel_rate))
+                               V.positive("max_wheel_rate", max_wheel_rate))
         start = follower.segments[0].start if pose is None else pose
         self.estimate = _pose3("pose", start)
         self._last: tuple[float, float] | None = None
@@ -490,8 +487,8 @@ class FollowerController:
 
     def rates(self, speed: float, yaw_rate: float) -> SideRates:
         """Left and right wheel rates (rad/s) for a body twist, within ``max_wheel_rate``."""
-        speed = v.finite("speed", speed)
-        yaw_rate = v.finite("yaw_rate", yaw_rate)
+        speed = V.finite("speed", speed)
+        yaw_rate = V.finite("yaw_rate", yaw_rate)
         return self._rates(speed, yaw_rate)
 
     def _rates(self, speed: float, yaw_rate: float) -> SideRates:
@@ -506,7 +503,7 @@ class FollowerController:
 
     def __call__(self, t: float, world: object = None) -> None:
         """A control tick at time ``t`` (s) if one is due: read, estimate, command."""
-        t = v.finite("t", t)
+        t = V.finite("t", t)
         if t < self._next_tick - 1e-12:
             return
         self._next_tick += self.period
@@ -582,15 +579,15 @@ class KinematicSkidSteer:
                  wheelbase: float = 2 * LAB_HALF_WHEELBASE, skid_factor: float | None = None,
                  steps_per_rev: int | None = None, motor_time_constant: float = 0.05) -> None:
         self.start = _pose3("pose", pose)
-        self.wheel_radius = v.positive("wheel_radius", wheel_radius)
-        self.track_width = v.positive("track_width", track_width)
-        self.wheelbase = v.positive("wheelbase", wheelbase)
+        self.wheel_radius = V.positive("wheel_radius", wheel_radius)
+        self.track_width = V.positive("track_width", track_width)
+        self.wheelbase = V.positive("wheelbase", wheelbase)
         if skid_factor is None:
             with np.errstate(all="ignore"):
                 ratio = np.float64(self.wheelbase) / self.track_width
-                skid_factor = float(v.finite_result("wheelbase and track_width",
+                skid_factor = float(V.finite_result("wheelbase and track_width",
                                                     1.0 + ratio * ratio))
-        self.skid_factor = v.finite("skid_factor", skid_factor)
+        self.skid_factor = V.finite("skid_factor", skid_factor)
         if self.skid_factor < 1.0:
             raise ValueError(f"skid_factor must be a finite number >= 1, got {skid_factor!r}")
         if steps_per_rev is not None and (isinstance(steps_per_rev, bool)
@@ -599,7 +596,7 @@ class KinematicSkidSteer:
             raise ValueError(f"steps_per_rev must be a whole number >= 1 or None, "
                              f"got {steps_per_rev!r}")
         self.steps_per_rev = None if steps_per_rev is None else int(steps_per_rev)
-        self.tau = v.nonnegative("motor_time_constant", motor_time_constant)
+        self.tau = V.nonnegative("motor_time_constant", motor_time_constant)
         a, b = 0.5 * self.wheelbase, 0.5 * self.track_width
         self.spec = WheelLayout((DrivenWheel("FL", (a, b)), DrivenWheel("FR", (a, -b)),
                                  DrivenWheel("RL", (-a, b)), DrivenWheel("RR", (-a, -b))))
@@ -611,7 +608,7 @@ class KinematicSkidSteer:
 
     def set_side_rates(self, left: float, right: float) -> None:
         """Left wheels (FL, RL) at ``left``, right wheels (FR, RR) at ``right``, rad/s."""
-        self._command = (v.finite("left", left), v.finite("right", right))
+        self._command = (V.finite("left", left), V.finite("right", right))
 
     @property
     def encoder_angles(self) -> np.ndarray:
@@ -625,7 +622,7 @@ class KinematicSkidSteer:
 
     def step(self, h: float) -> None:
         """Advance ``h`` seconds (> 0)."""
-        h = v.positive("h", h)
+        h = V.positive("h", h)
         (cmd_l, cmd_r), (rate_l, rate_r) = self._command, self._rate
         if self.tau > 0:
             decay = math.exp(-h / self.tau)

@@ -57,7 +57,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _kernels
-from wheelkin import _validate as v
+from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors, shift_twist
 from wheelkin.frames import Pose, Twist, wrap_angle
 from wheelkin.units import FOOT
@@ -134,8 +134,8 @@ class MecanumGeometry:
 
     def __post_init__(self) -> None:
         for name in ("half_wheelbase", "half_track", "wheel_radius"):
-            object.__setattr__(self, name, v.positive(name, getattr(self, name)))
-        gamma = v.finite("roller_angle", self.roller_angle)
+            object.__setattr__(self, name, V.positive(name, getattr(self, name)))
+        gamma = V.finite("roller_angle", self.roller_angle)
         if not 0.0 < gamma < math.pi / 2:
             raise ValueError(
                 f"roller_angle must be in (0, pi/2) rad (exclusive), got {self.roller_angle!r}"
@@ -169,7 +169,7 @@ def _geometry(geometry) -> MecanumGeometry:
 
 
 def _broadcast(**arrays: np.ndarray) -> list[np.ndarray]:
-    return v.broadcast(**arrays)
+    return V.broadcast(**arrays)
 
 
 def inverse_matrix(geometry: MecanumGeometry) -> np.ndarray:
@@ -293,10 +293,10 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     array([ 0.,  6., -8., 14.])
     """
     g = _geometry(geometry)
-    vx_a, vy_a, w_a = _broadcast(vx=v.finite_array("vx", vx), vy=v.finite_array("vy", vy),
-                                 omega=v.finite_array("omega", omega))
+    vx_a, vy_a, w_a = _broadcast(vx=V.finite_array("vx", vx), vy=V.finite_array("vy", vy),
+                                 omega=V.finite_array("omega", omega))
     if centre_of_rotation is not None:
-        c = v.finite_array("centre_of_rotation", centre_of_rotation)
+        c = V.finite_array("centre_of_rotation", centre_of_rotation)
         if c.shape != (2,):
             raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, got "
                              f"shape {c.shape}")
@@ -342,7 +342,7 @@ def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.
     array([0., 0., 0.])
     """
     g = _geometry(geometry)
-    rates = v.shaped("wheel_rates", wheel_rates, (4,))
+    rates = V.shaped("wheel_rates", wheel_rates, (4,))
     return rates @ forward_matrix(g).T
 
 
@@ -371,8 +371,8 @@ def fighting_component(wheel_rates: ArrayLike) -> float | NDArray[np.float64]:
     >>> fighting_component([12.0, 10.0, -8.0, -10.0])
     10.0
     """
-    rates = v.shaped("wheel_rates", wheel_rates, (4,))
-    return v.scalar_or_array(rates @ FIGHTING_PATTERN / 4.0)
+    rates = V.shaped("wheel_rates", wheel_rates, (4,))
+    return V.scalar_or_array(rates @ FIGHTING_PATTERN / 4.0)
 
 
 def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
@@ -393,9 +393,9 @@ def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     2.0
     """
     g = _geometry(geometry)
-    vx_a, vy_a, w_a = _broadcast(vx=v.finite_array("vx", vx), vy=v.finite_array("vy", vy),
-                                 omega=v.finite_array("omega", omega))
-    return v.scalar_or_array(np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k)
+    vx_a, vy_a, w_a = _broadcast(vx=V.finite_array("vx", vx), vy=V.finite_array("vy", vy),
+                                 omega=V.finite_array("omega", omega))
+    return V.scalar_or_array(np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k)
 
 
 def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: float = math.pi / 4,
@@ -440,16 +440,16 @@ def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: 
     >>> round(grip_usage(3.0, 3.0, 0.8), 4)  # diagonal, 4.24 m/s^2
     1.0812
     """
-    ax_a, ay_a = _broadcast(accel_x=v.finite_array("accel_x", accel_x),
-                            accel_y=v.finite_array("accel_y", accel_y))
-    mu_f = v.positive("mu", mu)
-    gamma = v.finite("roller_angle", roller_angle)
+    ax_a, ay_a = _broadcast(accel_x=V.finite_array("accel_x", accel_x),
+                            accel_y=V.finite_array("accel_y", accel_y))
+    mu_f = V.positive("mu", mu)
+    gamma = V.finite("roller_angle", roller_angle)
     if not 0.0 < gamma < math.pi / 2:
         raise ValueError(f"roller_angle must be in (0, pi/2) rad (exclusive), got {roller_angle!r}")
-    g = v.positive("gravity", gravity)
+    g = V.positive("gravity", gravity)
     with np.errstate(all="ignore"):
         out = (np.abs(ax_a) / math.sin(gamma) + np.abs(ay_a) / math.cos(gamma)) / (mu_f * g)
-    return v.scalar_or_array(v.finite_result("accel_x, accel_y, mu and roller_angle", out))
+    return V.scalar_or_array(V.finite_result("accel_x, accel_y, mu and roller_angle", out))
 
 
 class SpeedLimit(NamedTuple):
@@ -505,10 +505,8 @@ def limit_speed(twist: Twist | ArrayLike, max_speed: float, geometry: MecanumGeo
     >>> print(limit_speed((0.0, 0.0, 20.0), 4.572, g, refuse=True).reason)
     fastest wheel (FL) rim speed 7.000 m/s exceeds the limit 4.572 m/s: refused (not driven)
     """
-    vec = twist.as_array() if isinstance(twist, Twist) else v.shaped("twist", twist, (3,))
-    if vec.shape != (3,):
-        raise ValueError(f"twist must have shape (3,) (one command), got shape {vec.shape}")
-    vmax = v.positive("max_speed", max_speed)
+    vec = V.twist("twist", twist)
+    vmax = V.positive("max_speed", max_speed)
     if not isinstance(refuse, bool):
         raise ValueError(f"refuse must be True or False, got {refuse!r}")
     vx, vy, w = (float(c) for c in vec)
@@ -558,8 +556,8 @@ def desaturate(wheel_rates: ArrayLike, max_rate: float) -> np.ndarray:
     >>> desaturate([10.0, 20.0, -40.0, 5.0], 20.0)
     array([  5. ,  10. , -20. ,   2.5])
     """
-    rates = v.shaped("wheel_rates", wheel_rates, (4,))
-    return _kernels.desaturate(rates, v.positive("max_rate", max_rate))
+    rates = V.shaped("wheel_rates", wheel_rates, (4,))
+    return _kernels.desaturate(rates, V.positive("max_rate", max_rate))
 
 
 def circle_speed(radius: ArrayLike, lap_time: ArrayLike) -> float | NDArray[np.float64]:
@@ -578,12 +576,12 @@ def circle_speed(radius: ArrayLike, lap_time: ArrayLike) -> float | NDArray[np.f
     1.0
     """
     r_a, t_a = _circle_args(radius, lap_time)
-    return v.scalar_or_array(2.0 * np.pi * np.abs(r_a) / t_a)
+    return V.scalar_or_array(2.0 * np.pi * np.abs(r_a) / t_a)
 
 
 def _circle_args(radius, lap_time) -> tuple[np.ndarray, np.ndarray]:
-    r_a = v.finite_array("radius", radius)
-    t_a = v.finite_array("lap_time", lap_time)
+    r_a = V.finite_array("radius", radius)
+    t_a = V.finite_array("lap_time", lap_time)
     if np.any(r_a == 0):
         raise ValueError(f"radius must be a non-zero finite number (m), got {radius!r}")
     if np.any(t_a < np.finfo(float).tiny):  # not subnormal: 1/T must not overflow
@@ -591,7 +589,7 @@ def _circle_args(radius, lap_time) -> tuple[np.ndarray, np.ndarray]:
                          f"{lap_time!r}")
     r_a, t_a = _broadcast(radius=r_a, lap_time=t_a)
     with np.errstate(all="ignore"):
-        v.finite_result("radius and lap_time", 2.0 * np.pi * r_a / t_a)
+        V.finite_result("radius and lap_time", 2.0 * np.pi * r_a / t_a)
     return r_a, t_a
 
 
@@ -632,9 +630,9 @@ def circle_twist(radius: ArrayLike, lap_time: ArrayLike, t: ArrayLike = 0.0, *,
     array([[1., 0., 0.],
            [0., 1., 0.]])
     """
-    v.choice("heading", heading, ("rotating", "held"))
+    V.choice("heading", heading, ("rotating", "held"))
     r_a, t_a = _circle_args(radius, lap_time)
-    t_arr = v.finite_array("t", t)
+    t_arr = V.finite_array("t", t)
     r_a, t_a, t_arr = _broadcast(radius=r_a, lap_time=t_a, t=t_arr)
     speed = 2.0 * np.pi * np.abs(r_a) / t_a
     rate = np.sign(r_a) * 2.0 * np.pi / t_a
@@ -702,11 +700,11 @@ def go_to_point_twist(pose: Pose | ArrayLike, goal: Pose | ArrayLike, speed: flo
     >>> np.round(go_to_point_twist((0, 0, np.pi / 2), (2, 0, np.pi / 2), 1.0, 1.0), 12)
     array([ 0., -1.,  0.])
     """
-    p = pose.as_array() if isinstance(pose, Pose) else v.shaped("pose", pose, (3,))
-    q = goal.as_array() if isinstance(goal, Pose) else v.shaped("goal", goal, (3,))
-    vmax = v.positive("speed", speed)
-    wmax = v.positive("max_omega", max_omega)
-    step = None if dt is None else v.positive("dt", dt)
+    p = pose.as_array() if isinstance(pose, Pose) else V.shaped("pose", pose, (3,))
+    q = goal.as_array() if isinstance(goal, Pose) else V.shaped("goal", goal, (3,))
+    vmax = V.positive("speed", speed)
+    wmax = V.positive("max_omega", max_omega)
+    step = None if dt is None else V.positive("dt", dt)
     try:
         p, q = np.broadcast_arrays(p, q)
     except ValueError:

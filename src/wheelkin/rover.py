@@ -66,7 +66,7 @@ from typing import Literal, NamedTuple, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from wheelkin import _validate
+from wheelkin import _validate as V
 from wheelkin.frames import Twist
 from wheelkin.units import INCH
 
@@ -157,12 +157,12 @@ class RoverGeometry:
 
     def __post_init__(self) -> None:
         for name in ("d1", "d2", "d3", "d4"):
-            object.__setattr__(self, name, _validate.positive(name, getattr(self, name)))
-        _validate.choice("unit", self.unit, ("in", "m"))
+            object.__setattr__(self, name, V.positive(name, getattr(self, name)))
+        V.choice("unit", self.unit, ("in", "m"))
 
     def in_unit(self, unit: Literal["in", "m"]) -> RoverGeometry:
         """The same geometry in ``unit`` ("in" or "m"); itself if already in it."""
-        _validate.choice("unit", unit, ("in", "m"))
+        V.choice("unit", unit, ("in", "m"))
         if unit == self.unit:
             return self
         k = INCH if unit == "m" else 1.0 / INCH
@@ -226,11 +226,11 @@ def min_turning_radius(geometry: RoverGeometry = OSR_GEOMETRY,
     22.2496
     """
     g = _geometry(geometry)
-    angle = _validate.in_range("max_corner_angle", max_corner_angle, 0.0, math.pi / 2,
+    angle = V.in_range("max_corner_angle", max_corner_angle, 0.0, math.pi / 2,
                                inclusive=False)
     with np.errstate(all="ignore"):
         out = g.d1 + max(g.d2, g.d3) / np.tan(angle)
-    return float(_validate.finite_result("max_corner_angle", out))
+    return float(V.finite_result("max_corner_angle", out))
 
 
 def outer_middle_is_fastest_above(geometry: RoverGeometry = OSR_GEOMETRY) -> float:
@@ -260,7 +260,7 @@ def outer_middle_is_fastest_above(geometry: RoverGeometry = OSR_GEOMETRY) -> flo
 
 def _radius(radius, geometry: RoverGeometry, max_corner_angle: float) -> np.ndarray:
     """Validated turning radius (inf allowed, meaning straight)."""
-    r = _validate.finite_array("radius", radius, allow_inf=True)
+    r = V.finite_array("radius", radius, allow_inf=True)
     r_min = min_turning_radius(geometry, max_corner_angle)
     bad = np.abs(r) < r_min * (1.0 - 1e-12)  # tan(pi/4) rounds below 1: accept 17.754 itself
     if np.any(bad):
@@ -274,7 +274,7 @@ def _radius(radius, geometry: RoverGeometry, max_corner_angle: float) -> np.ndar
 
 def _scalar_radius(radius) -> float:
     """One turning radius (inf allowed, meaning straight) as a float."""
-    r = _validate.finite_array("radius", radius, allow_inf=True)
+    r = V.finite_array("radius", radius, allow_inf=True)
     if r.ndim != 0:
         raise ValueError(f"radius must be one number (inf allowed), got shape {r.shape}")
     return float(r)
@@ -284,7 +284,7 @@ def _threshold(straight_threshold, geometry: RoverGeometry) -> float:
     """The straight-ahead threshold in the geometry's unit (None: the OSR's 250 in)."""
     if straight_threshold is None:
         return STRAIGHT_THRESHOLD * (1.0 if geometry.unit == "in" else INCH)
-    t = _validate.finite_array("straight_threshold", straight_threshold, allow_inf=True)
+    t = V.finite_array("straight_threshold", straight_threshold, allow_inf=True)
     if t.ndim != 0 or not t > 0:
         raise ValueError(f"straight_threshold must be a number > 0 (inf allowed), got "
                          f"{straight_threshold!r}")
@@ -380,9 +380,9 @@ def wheel_speeds(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
     """
     g = _geometry(geometry)
     r = _radius(radius, g, max_corner_angle)
-    x = _validate.finite_array("speed", speed)
+    x = V.finite_array("speed", speed)
     threshold = _threshold(straight_threshold, g)
-    r, x = _validate.broadcast(radius=r, speed=x)
+    r, x = V.broadcast(radius=r, speed=x)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0e9, r)[..., None]  # placeholder, replaced below
     pos = wheel_positions(g)
@@ -461,12 +461,12 @@ def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
     """
     g = _geometry(geometry)
     r = _radius(radius, g, max_corner_angle)
-    x = _validate.finite_array("speed", speed)
+    x = V.finite_array("speed", speed)
     threshold = _threshold(straight_threshold, g)
-    r, x = _validate.broadcast(radius=r, speed=x)
+    r, x = V.broadcast(radius=r, speed=x)
     straight = np.abs(r) >= threshold
     rr = np.where(straight, 1.0, np.abs(r))
-    return _validate.scalar_or_array(x * np.where(straight, 1.0, rr / (rr + g.d4)))
+    return V.scalar_or_array(x * np.where(straight, 1.0, rr / (rr + g.d4)))
 
 
 def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
@@ -510,11 +510,11 @@ def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
     ...
     ValueError: command must be in [-100, 100], got 101
     """
-    c = _validate.finite_array("command", command)
+    c = V.finite_array("command", command)
     if np.any(np.abs(c) > COMMAND_LIMIT):
         bad = c[np.abs(c) > COMMAND_LIMIT].flat[0] if c.ndim else command
         raise ValueError(f"command must be in [-100, 100], got {bad!r}")
-    _validate.choice("mapping", mapping, _MAPPINGS)
+    V.choice("mapping", mapping, _MAPPINGS)
     g = _geometry(geometry).in_unit("in")  # the command's radii are the document's inches
     mag = np.abs(c)
     safe = np.where(mag > 0, mag, 1.0)
@@ -545,7 +545,7 @@ def radius_to_command(radius: ArrayLike) -> float | NDArray[np.float64]:
     >>> round(radius_to_command(135.0), 6), radius_to_command(-20.0), radius_to_command(np.inf)
     (50.0, -100.0, 0.0)
     """
-    r = _validate.finite_array("radius", radius, allow_inf=True)
+    r = V.finite_array("radius", radius, allow_inf=True)
     mag = np.abs(r)
     finite = np.isfinite(r)
     bad = finite & ((mag < SOFTWARE_MIN_RADIUS) | (mag > STRAIGHT_THRESHOLD))
@@ -591,7 +591,7 @@ def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry
     g = _geometry(geometry).in_unit("in")  # the document's command is in inches
     threshold = _threshold(straight_threshold, g)
     r = _scalar_radius(radius)
-    x = _validate.finite("speed_in_per_s", speed_in_per_s)
+    x = V.finite("speed_in_per_s", speed_in_per_s)
     v = float(centre_speed(r, x, g, threshold, max_corner_angle=max_corner_angle))
     if abs(r) >= threshold:
         r = math.inf
@@ -630,9 +630,9 @@ def sandbox_commands(radius: float, speed_in_per_s: float, wheel_radius_in: floa
     >>> np.round(np.degrees(steering), 3)
     array([-15.74 , -24.779,  15.74 ,  24.779])
     """
-    w = _validate.positive("wheel_radius_in", wheel_radius_in)
+    w = V.positive("wheel_radius_in", wheel_radius_in)
     r = _scalar_radius(radius)
-    x = _validate.finite("speed_in_per_s", speed_in_per_s)
+    x = V.finite("speed_in_per_s", speed_in_per_s)
     geometry = _geometry(geometry).in_unit("in")  # the command is in inches
     speeds = wheel_speeds(r, x, geometry, straight_threshold, max_corner_angle=max_corner_angle)
     angles = corner_angles(r, geometry, straight_threshold, max_corner_angle=max_corner_angle)
@@ -706,10 +706,10 @@ def wheel_commands(v: ArrayLike, omega: ArrayLike,
     array([-15.74 , -24.779,  15.74 ,  24.779])
     """
     g = _geometry(geometry).in_unit("m")
-    stop = _validate.in_range("max_corner_angle", max_corner_angle, 0.0, math.pi / 2,
+    stop = V.in_range("max_corner_angle", max_corner_angle, 0.0, math.pi / 2,
                               inclusive=False)
-    v_a = _validate.finite_array("v", v)
-    w_a = _validate.finite_array("omega", omega)
+    v_a = V.finite_array("v", v)
+    w_a = V.finite_array("omega", omega)
     try:
         v_a, w_a = np.broadcast_arrays(v_a, w_a)
     except ValueError:

@@ -94,7 +94,7 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from wheelkin import _validate as v
+from wheelkin import _validate as V
 from wheelkin import rover
 from wheelkin._kernels import point_row, roller_axis, shift_twist
 from wheelkin.frames import Twist, fold_half_turn
@@ -176,17 +176,17 @@ class WheelConstraint:
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
             raise ValueError(f"name must be a non-empty string, got {self.name!r}")
-        p = v.shaped("position", self.position, (2,))
+        p = V.shaped("position", self.position, (2,))
         if p.shape != (2,):
             raise ValueError(f"position must be one point (x, y), got shape {p.shape}")
         object.__setattr__(self, "position", (float(p[0]), float(p[1])))
-        object.__setattr__(self, "heading", v.finite("heading", self.heading))
-        object.__setattr__(self, "wheel_radius", v.positive("wheel_radius", self.wheel_radius))
+        object.__setattr__(self, "heading", V.finite("heading", self.heading))
+        object.__setattr__(self, "wheel_radius", V.positive("wheel_radius", self.wheel_radius))
         if not isinstance(self.kind, str):
             raise ValueError(f"kind must be one of {', '.join(map(repr, WHEEL_KINDS))}; "
                              f"got {self.kind!r}")
-        v.choice("kind", self.kind, WHEEL_KINDS)
-        gamma = v.finite("roller_angle", self.roller_angle)
+        V.choice("kind", self.kind, WHEEL_KINDS)
+        gamma = V.finite("roller_angle", self.roller_angle)
         if self.kind == "swedish":
             if not 0.0 < abs(gamma) <= math.pi / 2:
                 raise ValueError("roller_angle must satisfy 0 < |roller_angle| <= pi/2 for a "
@@ -195,7 +195,7 @@ class WheelConstraint:
             raise ValueError(f"roller_angle must be 0 for a {self.kind!r} wheel (only swedish "
                              f"wheels have rollers), got {self.roller_angle!r}")
         object.__setattr__(self, "roller_angle", gamma)
-        delta = v.finite("steering", self.steering)
+        delta = V.finite("steering", self.steering)
         if self.kind in ("fixed", "swedish") and delta != 0.0:
             raise ValueError(f"steering must be 0 for a {self.kind!r} wheel (it cannot steer), "
                              f"got {self.steering!r}")
@@ -259,7 +259,7 @@ def _wheels(wheels) -> tuple[WheelConstraint, ...]:
 def _twist(twist) -> np.ndarray:
     if isinstance(twist, Twist):
         return twist.as_array()
-    return v.shaped("twist", twist, (3,))
+    return V.shaped("twist", twist, (3,))
 
 
 def _row(direction: np.ndarray, position: tuple[float, float]) -> np.ndarray:
@@ -486,7 +486,7 @@ def wheel_rates(wheels: Sequence[WheelConstraint], twist: Twist | npt.ArrayLike,
     w = _wheels(wheels)
     xi = _twist(twist)
     if centre_of_rotation is not None:
-        c = v.finite_array("centre_of_rotation", centre_of_rotation)
+        c = V.finite_array("centre_of_rotation", centre_of_rotation)
         if c.shape != (2,):
             raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, got "
                              f"shape {c.shape}")
@@ -562,7 +562,7 @@ def body_twist(wheels: Sequence[WheelConstraint], rates: npt.ArrayLike) -> np.nd
     array([0.2, 0. , 1. ])
     """
     w = _wheels(wheels)
-    phi = v.shaped("rates", rates, (len(w),))
+    phi = V.shaped("rates", rates, (len(w),))
     measured = [i for i, wh in enumerate(w) if wh.kind != "caster"]
     if not measured:
         raise ValueError("wheels must include at least one wheel that is not a caster")
@@ -604,9 +604,7 @@ def steer_for_twist(wheels: Sequence[WheelConstraint],
     45.0
     """
     w = _wheels(wheels)
-    xi = _twist(twist)
-    if xi.shape != (3,):
-        raise ValueError(f"twist must have shape (3,) (one twist), got shape {xi.shape}")
+    xi = V.twist("twist", twist)
     vx, vy, omega = (float(c) for c in xi)
     out = []
     for wh in w:
@@ -792,14 +790,14 @@ def diff_drive_wheels(track_width: float, wheel_radius: float, *, caster: bool =
     >>> [(w.name, w.kind, w.position) for w in diff_drive_wheels(0.1, 0.02)]
     [('L', 'fixed', (0.0, 0.05)), ('R', 'fixed', (0.0, -0.05)), ('C', 'caster', (-0.05, 0.0))]
     """
-    W = v.positive("track_width", track_width)
-    r = v.positive("wheel_radius", wheel_radius)
+    W = V.positive("track_width", track_width)
+    r = V.positive("wheel_radius", wheel_radius)
     if not isinstance(caster, bool):
         raise ValueError(f"caster must be True or False, got {caster!r}")
     wheels = [WheelConstraint("L", (0.0, W / 2), 0.0, r, "fixed"),
               WheelConstraint("R", (0.0, -W / 2), 0.0, r, "fixed")]
     if caster:
-        d = 0.5 * W if caster_offset is None else v.positive("caster_offset", caster_offset)
+        d = 0.5 * W if caster_offset is None else V.positive("caster_offset", caster_offset)
         wheels.append(WheelConstraint("C", (-d, 0.0), 0.0, 0.4 * r, "caster"))
     return tuple(wheels)
 
@@ -818,9 +816,9 @@ def skid_steer_wheels(*, half_wheelbase: float, half_track: float,
     >>> [w.position for w in skid]
     [(0.05, 0.06), (0.05, -0.06), (-0.05, 0.06), (-0.05, -0.06)]
     """
-    b = v.positive("half_track", half_track)
-    a = v.positive("half_wheelbase", half_wheelbase)
-    r = v.positive("wheel_radius", wheel_radius)
+    b = V.positive("half_track", half_track)
+    a = V.positive("half_wheelbase", half_wheelbase)
+    r = V.positive("wheel_radius", wheel_radius)
     return tuple(WheelConstraint(name, (sx * a, sy * b), 0.0, r, "fixed")
                  for name, sx, sy in (("FL", 1, 1), ("FR", 1, -1), ("RL", -1, 1),
                                       ("RR", -1, -1)))
@@ -884,8 +882,8 @@ def rover_wheels(geometry: rover.RoverGeometry | None = None, wheel_radius: floa
     if not isinstance(g, rover.RoverGeometry):
         raise ValueError(f"geometry must be a RoverGeometry, got {type(g).__name__}")
     g = g.in_unit("in")  # the document's corner angles are in inches; positions in metres
-    r = v.positive("wheel_radius", wheel_radius)
-    turn = v.finite_array("turning_radius", turning_radius, allow_inf=True)
+    r = V.positive("wheel_radius", wheel_radius)
+    turn = V.finite_array("turning_radius", turning_radius, allow_inf=True)
     smallest = rover.min_turning_radius(g) * INCH
     if turn.ndim != 0 or abs(float(turn)) < smallest * (1 - 1e-12):
         raise ValueError(f"turning_radius must be one number with |turning_radius| >= "
@@ -921,10 +919,10 @@ def car_wheels(*, wheelbase: float, track_width: float, wheel_radius: float,
     """
     from wheelkin import carlike
 
-    L = v.positive("wheelbase", wheelbase)
-    W = v.positive("track_width", track_width)
-    r = v.positive("wheel_radius", wheel_radius)
-    if v.finite_array("turning_radius", turning_radius, allow_inf=True).ndim != 0:
+    L = V.positive("wheelbase", wheelbase)
+    W = V.positive("track_width", track_width)
+    r = V.positive("wheel_radius", wheel_radius)
+    if V.finite_array("turning_radius", turning_radius, allow_inf=True).ndim != 0:
         raise ValueError("turning_radius must be one number (inf: straight), got "
                          f"{turning_radius!r}")
     try:

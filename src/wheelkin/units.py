@@ -34,7 +34,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from wheelkin import _validate as v
+from wheelkin import _validate as V
 
 __all__ = [
     "DEG",
@@ -101,12 +101,12 @@ RADON_ULZER_STEPS_PER_M = 8043
 
 def _factor(name: str, unit) -> tuple[float, str]:
     if not isinstance(unit, str) or unit not in UNITS:
-        v.choice(name, unit, list(UNITS))
+        V.choice(name, unit, list(UNITS))
     return UNITS[unit]
 
 
 def _number_or_array(name: str, value):
-    arr = v.finite_array(name, value)
+    arr = V.finite_array(name, value)
     return arr
 
 
@@ -202,9 +202,9 @@ def steps_per_m_from(counts_per_motor_rev: float, gear_ratio: float,
     >>> round(steps_per_m_from(12, 75.81, 0.113097), 1)
     8043.7
     """
-    n = v.positive("counts_per_motor_rev", counts_per_motor_rev)
-    g = v.positive("gear_ratio", gear_ratio)
-    c = v.positive("wheel_circumference", wheel_circumference)
+    n = V.positive("counts_per_motor_rev", counts_per_motor_rev)
+    g = V.positive("gear_ratio", gear_ratio)
+    c = V.positive("wheel_circumference", wheel_circumference)
     return n * g / c
 
 
@@ -215,13 +215,13 @@ def _metres_per_step(steps_per_m, steps_per_rev, wheel_radius) -> float:
         raise ValueError("give exactly one of steps_per_m, or steps_per_rev together with "
                          "wheel_radius")
     if by_metre:
-        return 1.0 / v.positive("steps_per_m", steps_per_m)
+        return 1.0 / V.positive("steps_per_m", steps_per_m)
     if steps_per_rev is None or wheel_radius is None:
         missing = "wheel_radius" if wheel_radius is None else "steps_per_rev"
         raise ValueError(f"{missing} must be given together with "
                          f"{'steps_per_rev' if missing == 'wheel_radius' else 'wheel_radius'}")
-    n = v.positive("steps_per_rev", steps_per_rev)
-    r = v.positive("wheel_radius", wheel_radius)
+    n = V.positive("steps_per_rev", steps_per_rev)
+    r = V.positive("wheel_radius", wheel_radius)
     return 2.0 * math.pi * r / n
 
 
@@ -255,7 +255,7 @@ def steps_to_distance(steps: ArrayLike, *, steps_per_m: float | None = None,
     0.113097
     """
     per_step = _metres_per_step(steps_per_m, steps_per_rev, wheel_radius)
-    return _out(v.finite_array("steps", steps) * per_step)
+    return _out(V.finite_array("steps", steps) * per_step)
 
 
 def distance_to_steps(distance: ArrayLike, *, steps_per_m: float | None = None,
@@ -274,4 +274,4 @@ def distance_to_steps(distance: ArrayLike, *, steps_per_m: float | None = None,
     array([-572.957795, 1145.915590])
     """
     per_step = _metres_per_step(steps_per_m, steps_per_rev, wheel_radius)
-    return _out(v.finite_array("distance", distance) / per_step)
+    return _out(V.finite_array("distance", distance) / per_step)

@@ -43,7 +43,7 @@ from typing import Any, cast
 import numpy as np
 from numpy.typing import ArrayLike
 
-from wheelkin import _validate as v
+from wheelkin import _validate as V
 from wheelkin.diffdrive import wheel_speeds
 from wheelkin.frames import Pose, wrap_angle
 
@@ -159,21 +159,18 @@ class Segment:
     target: int | None = None
 
     def __post_init__(self) -> None:
-        v.choice("kind", self.kind, _KINDS)
+        V.choice("kind", self.kind, _KINDS)
         for name in ("start", "end"):
-            p = v.shaped(name, getattr(self, name), (3,))
-            if p.ndim != 1:
-                raise ValueError(f"{name} must be a pose (x, y, theta), got shape {p.shape}")
-            object.__setattr__(self, name, Pose(*p.tolist()))
-        object.__setattr__(self, "length", v.nonnegative("length", self.length))
+            object.__setattr__(self, name, Pose(*V.pose(name, getattr(self, name)).tolist()))
+        object.__setattr__(self, "length", V.nonnegative("length", self.length))
         object.__setattr__(self, "heading_change",
-                           v.finite("heading_change", self.heading_change))
-        r = v.finite_array("radius", self.radius, allow_inf=True)
+                           V.finite("heading_change", self.heading_change))
+        r = V.finite_array("radius", self.radius, allow_inf=True)
         if r.ndim != 0:
             raise ValueError(f"radius must be one number (inf for a straight), got {r!r}")
         object.__setattr__(self, "radius", float(r))
         if self.centre is not None:
-            c = v.shaped("centre", self.centre, (2,))
+            c = V.shaped("centre", self.centre, (2,))
             if c.ndim != 1:
                 raise ValueError(f"centre must be a point (x, y) or None, got {self.centre!r}")
             object.__setattr__(self, "centre", tuple(c.tolist()))
@@ -191,7 +188,7 @@ class Segment:
         >>> plan_segments([[0, 0], [2, 0]])[0].point_at(0.25)
         array([0.5, 0. ])
         """
-        fraction = v.in_range("fraction", fraction, 0.0, 1.0)
+        fraction = V.in_range("fraction", fraction, 0.0, 1.0)
         x0, y0, t0 = self.start
         if self.kind == "straight":
             d = fraction * self.length
@@ -213,7 +210,7 @@ class Segment:
         >>> s.pose_at([0.0, 0.5, 1.0]).round(3).tolist()
         [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]]
         """
-        f = v.finite_array("fraction", fraction)
+        f = V.finite_array("fraction", fraction)
         if np.any((f < 0) | (f > 1)):
             raise ValueError(f"fraction must be in [0, 1], got {fraction!r}")
         x0, y0, t0 = self.start
@@ -289,7 +286,7 @@ def plan_segments(waypoints: ArrayLike, arc_radius: float | None = LAB_ARC_RADIU
     ...
     ValueError: waypoints[1] repeats waypoints[0] at (0, 0): consecutive waypoints must differ
     """
-    pts = v.finite_array("waypoints", waypoints)
+    pts = V.finite_array("waypoints", waypoints)
     if pts.ndim != 2 or pts.shape[1] != 2:
         raise ValueError(f"waypoints must have shape (N, 2), got shape {pts.shape}")
     if pts.shape[0] < 2:
@@ -301,11 +298,11 @@ def plan_segments(waypoints: ArrayLike, arc_radius: float | None = LAB_ARC_RADIU
                 "consecutive waypoints must differ"
             )
     if arc_radius is not None:
-        arc_radius = v.positive("arc_radius", arc_radius)
+        arc_radius = V.positive("arc_radius", arc_radius)
     if initial_heading is None:
         theta = _heading_of(pts[1] - pts[0])
     else:
-        theta = float(wrap_angle(v.finite("initial_heading", initial_heading)))
+        theta = float(wrap_angle(V.finite("initial_heading", initial_heading)))
 
     segments: list[Segment] = []
     x, y = float(pts[0, 0]), float(pts[0, 1])
@@ -370,8 +367,8 @@ def sample_path(segments: Segment | Iterable[Segment], spacing: float = 0.01,
     True
     """
     segs = validate_segments(segments)
-    spacing = v.positive("spacing", spacing)
-    turn_step = v.positive("turn_step", turn_step)
+    spacing = V.positive("spacing", spacing)
+    turn_step = V.positive("turn_step", turn_step)
     parts = []
     for k, seg in enumerate(segs):
         if seg.kind == "turn":
@@ -412,8 +409,8 @@ class WheelCommand:
         if not isinstance(self.segment, Segment):
             raise TypeError(f"segment must be a Segment, got {type(self.segment).__name__}")
         for name in ("left_rate", "right_rate", "speed", "yaw_rate"):
-            object.__setattr__(self, name, v.finite(name, getattr(self, name)))
-        object.__setattr__(self, "duration", v.nonnegative("duration", self.duration))
+            object.__setattr__(self, name, V.finite(name, getattr(self, name)))
+        object.__setattr__(self, "duration", V.nonnegative("duration", self.duration))
 
 
 def schedule(segments: Segment | Iterable[Segment], wheel_radius: float, half_axle: float,
@@ -461,9 +458,9 @@ def schedule(segments: Segment | Iterable[Segment], wheel_radius: float, half_ax
     (5.8929, 7.5, 2.9322)
     """
     segs = validate_segments(segments)
-    r = v.positive("wheel_radius", wheel_radius)
-    d = v.positive("half_axle", half_axle)
-    rate = v.positive("wheel_rate", wheel_rate)
+    r = V.positive("wheel_radius", wheel_radius)
+    d = V.positive("half_axle", half_axle)
+    rate = V.positive("wheel_rate", wheel_rate)
     outer_speed = r * rate
     out = []
     for seg in segs:
@@ -505,7 +502,7 @@ def planned_pose(commands: Iterable[WheelCommand], t: ArrayLike) -> Pose | np.nd
     [[1.5, -1.5, 1.5708], [1.5, 1.0, 1.5708]]
     """
     cmds = validate_commands(commands)
-    tt = v.finite_array("t", t)
+    tt = V.finite_array("t", t)
     times = schedule_times(cmds)
     k = np.clip(np.searchsorted(times, tt, side="right") - 1, 0, len(cmds) - 1)
     out = np.empty((*tt.shape, 3))
@@ -526,7 +523,7 @@ def planned_wheel_angles(commands: Iterable[WheelCommand], t: ArrayLike) -> np.n
     [[3.75, 3.75], [7.5, 7.5]]
     """
     cmds = validate_commands(commands)
-    tt = v.finite_array("t", t)
+    tt = V.finite_array("t", t)
     times = schedule_times(cmds)
     left = np.concatenate([[0.0], np.cumsum([c.left_rate * c.duration for c in cmds])])
     right = np.concatenate([[0.0], np.cumsum([c.right_rate * c.duration for c in cmds])])
@@ -557,7 +554,7 @@ def quantise(commands: Iterable[WheelCommand], period: float) -> list[WheelComma
     [1.024, 0.32, 1.024]
     """
     cmds = validate_commands(commands)
-    period = v.positive("period", period)
+    period = V.positive("period", period)
     out = []
     for c in cmds:
         n = math.ceil(c.duration / period - 1e-9)
@@ -610,22 +607,20 @@ def average_encoder_odometry(wheel_angles: ArrayLike, wheel_radius: float, half_
     >>> average_encoder_odometry(phi, r, d).round(6).tolist()
     [[0.0, 0.0, 0.0], [0.0, 0.0, 1.570796], [0.0, 1.0, 1.570796]]
     """
-    phi = v.finite_array("wheel_angles", wheel_angles)
+    phi = V.finite_array("wheel_angles", wheel_angles)
     if phi.ndim != 2 or phi.shape[1] != 4 or phi.shape[0] < 1:
         raise ValueError(f"wheel_angles must have shape (N, 4) (FL, FR, RL, RR), "
                          f"got shape {phi.shape}")
-    r = v.positive("wheel_radius", wheel_radius)
-    d = v.positive("half_axle", half_axle)
-    p0 = v.shaped("pose", pose, (3,))
-    if p0.ndim != 1:
-        raise ValueError(f"pose must have shape (3,), got shape {p0.shape}")
+    r = V.positive("wheel_radius", wheel_radius)
+    d = V.positive("half_axle", half_axle)
+    p0 = V.pose("pose", pose)
     dphi = np.diff(phi, axis=0)
     ds = r * dphi.mean(axis=1)
     if heading is None:
         dtheta = r * ((dphi[:, 1] + dphi[:, 3]) - (dphi[:, 0] + dphi[:, 2])) / 2 / (2 * d)
         theta = p0[2] + np.concatenate([[0.0], np.cumsum(dtheta)])
     else:
-        theta = v.finite_array("heading", heading)
+        theta = V.finite_array("heading", heading)
         if theta.shape != (phi.shape[0],):
             raise ValueError(f"heading must have shape ({phi.shape[0]},) like wheel_angles' "
                              f"rows, got shape {theta.shape}")
@@ -640,8 +635,8 @@ def distance_to_walls(points: ArrayLike, walls: ArrayLike = LAB_WALLS) -> np.nda
     >>> distance_to_walls([[0.0, 0.5], [1.5, -1.5]]).tolist()
     [0.5, 0.5]
     """
-    p = v.shaped("points", points, (2,))
-    w = v.finite_array("walls", walls)
+    p = V.shaped("points", points, (2,))
+    w = V.finite_array("walls", walls)
     if w.ndim != 3 or w.shape[1:] != (2, 2) or w.shape[0] < 1:
         raise ValueError(f"walls must be a list of ((x0, y0), (x1, y1)) segments, "
                          f"got shape {w.shape}")
@@ -650,7 +645,7 @@ def distance_to_walls(points: ArrayLike, walls: ArrayLike = LAB_WALLS) -> np.nda
     rel = p[..., None, :] - a
     t = np.clip(np.sum(rel * ab, axis=-1) / np.maximum(np.sum(ab * ab, axis=-1), 1e-300), 0, 1)
     nearest = a + t[..., None] * ab
-    return v.scalar_or_array(np.min(np.linalg.norm(p[..., None, :] - nearest, axis=-1), axis=-1))
+    return V.scalar_or_array(np.min(np.linalg.norm(p[..., None, :] - nearest, axis=-1), axis=-1))
 
 
 def waypoint_errors(path: ArrayLike, waypoints: ArrayLike = LAB_WAYPOINTS) -> np.ndarray:
@@ -659,10 +654,10 @@ def waypoint_errors(path: ArrayLike, waypoints: ArrayLike = LAB_WAYPOINTS) -> np
     >>> waypoint_errors([[0, 0], [1, 0], [2, 0]], [[1, 0.1], [2, 0]]).round(3).tolist()
     [0.1, 0.0]
     """
-    p = v.finite_array("path", path)
+    p = V.finite_array("path", path)
     if p.ndim != 2 or p.shape[1] not in (2, 3) or len(p) < 1:
         raise ValueError(f"path must have shape (N, 2) or (N, 3), got shape {p.shape}")
-    w = v.finite_array("waypoints", waypoints)
+    w = V.finite_array("waypoints", waypoints)
     if w.ndim != 2 or w.shape[1] != 2:
         raise ValueError(f"waypoints must have shape (M, 2), got shape {w.shape}")
     return np.min(np.linalg.norm(p[None, :, :2] - w[:, None, :], axis=-1), axis=1)

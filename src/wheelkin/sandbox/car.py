@@ -298,7 +298,7 @@ def car_odometry(rear_angles: npt.ArrayLike, steering: npt.ArrayLike, wheelbase:
         raise ValueError("steering must be in (-pi/2, pi/2) rad")
     L = V.in_range("wheelbase", wheelbase, 1e-3, 1e3)
     r = V.in_range("wheel_radius", wheel_radius, 1e-4, 1e2)
-    p0 = V.shaped("pose0", pose0, (3,)).reshape(3)
+    p0 = V.pose("pose0", pose0)
     ds = r * np.diff(phi, axis=0).mean(axis=1)
     dth = ds * np.tan(d) / L
     theta = p0[2] + np.concatenate([[0.0], np.cumsum(dth)])

@@ -162,11 +162,9 @@ def dissipation_objective(xi: npt.ArrayLike, xi_pred: npt.ArrayLike, J: npt.Arra
     """
     if isinstance(rows_per_wheel, bool) or rows_per_wheel not in (1, 2):
         raise ValueError(f"rows_per_wheel must be 1 or 2, got {rows_per_wheel!r}")
-    x = V.shaped("xi", xi, (3,))
-    xp = V.shaped("xi_pred", xi_pred, (3,))
+    x = V.twist("xi", xi)
+    xp = V.twist("xi_pred", xi_pred)
     jac = V.shaped("J", J, (3,))
-    if x.shape != (3,) or xp.shape != (3,):
-        raise ValueError(f"xi and xi_pred must have shape (3,), got {x.shape} and {xp.shape}")
     if jac.ndim != 2 or len(jac) == 0 or len(jac) % rows_per_wheel:
         raise ValueError(f"J must have shape (m, 3) with m a multiple of rows_per_wheel "
                          f"({rows_per_wheel}), got shape {jac.shape}")

@@ -79,9 +79,7 @@ def _points(name: str, value) -> np.ndarray:
 
 
 def _pose(value) -> tuple[float, float, float]:
-    p = V.shaped("pose", value, (3,))
-    if p.ndim != 1:
-        raise ValueError(f"pose must be one pose (x, y, theta), got shape {p.shape}")
+    p = V.pose("pose", value)
     if abs(p[0]) > MAX_COORDINATE or abs(p[1]) > MAX_COORDINATE:
         raise ValueError(f"pose must be within |x|, |y| <= {MAX_COORDINATE:g} m, got {value!r}")
     return (float(p[0]), float(p[1]), float(p[2]))
@@ -198,9 +196,8 @@ class VehicleDrawing:
         per_wheel = dict(zip(spec.wheel_names, spec.steering_of(steer), strict=True))
         tw = None
         if twist is not None:
-            tw = V.shaped("twist", twist, (3,))
-            if tw.shape != (3,) or max(abs(tw[0]), abs(tw[1])) > MAX_SPEED \
-                    or abs(tw[2]) > MAX_YAW_RATE:
+            tw = V.twist("twist", twist)
+            if max(abs(tw[0]), abs(tw[1])) > MAX_SPEED or abs(tw[2]) > MAX_YAW_RATE:
                 raise ValueError(f"twist must be one (vx, vy, omega) within {MAX_SPEED:g} m/s "
                                  f"and {MAX_YAW_RATE:g} rad/s, got {twist!r}")
         slip = {}

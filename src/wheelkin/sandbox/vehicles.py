@@ -566,10 +566,7 @@ def ideal_commands(spec: VehicleSpec, twist: npt.ArrayLike,
     """
     if not isinstance(spec, VehicleSpec):
         raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
-    arr = V.shaped("twist", twist, (3,))
-    if arr.shape != (3,):
-        raise ValueError(f"twist must be one twist (vx, vy, omega), shape (3,), got shape "
-                         f"{arr.shape}")
+    arr = V.twist("twist", twist)
     vx, vy, w = arr.tolist()
     k = len(spec.steered_names)
     if steering is None:

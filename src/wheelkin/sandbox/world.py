@@ -95,9 +95,7 @@ def _integer(name: str, value, low: int) -> int:
 
 
 def _pose(value) -> tuple[float, float, float]:
-    p = V.shaped("pose", value, (3,))
-    if p.ndim != 1:
-        raise ValueError(f"pose must be one pose (x, y, theta), got shape {p.shape}")
+    p = V.pose("pose", value)
     x, y, theta = (float(v) for v in p)
     if abs(x) > MAX_COORDINATE or abs(y) > MAX_COORDINATE:
         raise ValueError(f"pose must be within |x|, |y| <= {MAX_COORDINATE:g} m, got {value!r}")
@@ -223,9 +221,7 @@ class Robot:
             raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
         _steppable(spec)
         self._x, self._y, self._theta = _pose(pose)
-        tw = V.shaped("twist", twist, (3,))
-        if tw.ndim != 1:
-            raise ValueError(f"twist must be one twist (vx, vy, omega), got shape {tw.shape}")
+        tw = V.twist("twist", twist)
         tw = _twist(("twist[0] (vx)", "twist[1] (vy)", "twist[2] (omega)"), tw)
         self.world = world
         self.spec = spec
