@@ -244,8 +244,8 @@ import typing  # noqa: E402
 
 #: Callables that read a sandbox vehicle (the sandbox is validated on its own, not here).
 SANDBOX_BOUND: set[str] = set()
-FORMULA_MODULES = ("units", "frames", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
-                   "follower", "unified")
+FORMULA_MODULES = ("units", "frames", "sources", "rover", "mecanum", "diffdrive", "odometry",
+                   "waypoints", "follower", "unified")
 
 
 def _good_values() -> dict:
@@ -409,7 +409,7 @@ OVERRIDES = {
     "unified.sliding_row": {"wheel": None},
     "mecanum.circle_twist": {"radius": 1.0, "lap_time": 10.0},
     "mecanum.circle_speed": {"radius": 1.0, "lap_time": 10.0},
-    "frames.rover_twist": {"radius_in": 30.0, "centre_speed_in_per_s": 10.0},
+    "sources.rover_twist": {"radius_in": 30.0, "centre_speed_in_per_s": 10.0},
     "diffdrive.speed_from_counts": {"counts": [0, 5, 10, 15], "times": [0.0, 0.1, 0.2, 0.3],
                                     "window": 0.15},
     "diffdrive.wrap_int": {"values": [1, 2, 3]},

@@ -48,7 +48,7 @@ The Radon Ulzer firmware README (cited as ``radonulzer_architecture``) prints an
 scheme in its own convention: positions X, Y in mm with **Y forward** at the start and X to
 the right, and the orientation counter-clockwise from +Y, in rad (or mrad in its "improvement").
 Its pose converts to ours by ``x = Y``, ``y = -X``, ``theta = orientation`` (in metres:
-:func:`wheelkin.frames.firmware_pose_to_ours`). :func:`firmware_as_printed` runs the scheme as
+:func:`wheelkin.sources.firmware_pose_to_ours`). :func:`firmware_as_printed` runs the scheme as
 printed, **with its mistakes** (the centre distance from the difference of the wheels, and an
 orientation update whose wrap overwrites it); :func:`firmware_corrected` is the same scheme with
 those mistakes fixed; :func:`firmware_scheme` chooses every variant separately, and

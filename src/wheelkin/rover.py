@@ -67,6 +67,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
+from wheelkin import sources
 from wheelkin.frames import Twist
 from wheelkin.units import INCH
 
@@ -565,7 +566,7 @@ def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry
     counter-clockwise) for a turn commanded in the document's convention.
 
     The body centre moves at ``v = X |r| / (|r| + d4)`` (:func:`centre_speed`) on a circle of
-    radius ``|r|``, clockwise for ``r > 0``; :func:`wheelkin.frames.rover_twist` turns that
+    radius ``|r|``, clockwise for ``r > 0``; :func:`wheelkin.sources.rover_twist` turns that
     into ``(vx, vy, omega) = (v, 0, -v / r)`` in m/s and rad/s.
 
     Parameters
@@ -586,8 +587,6 @@ def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry
     >>> print(f"{tw.vx:.5f} {tw.vy:.1f} {tw.omega:.5f}")
     0.19015 0.0 -0.24954
     """
-    from wheelkin import frames
-
     g = _geometry(geometry).in_unit("in")  # the document's command is in inches
     threshold = _threshold(straight_threshold, g)
     r = _scalar_radius(radius)
@@ -595,7 +594,7 @@ def document_twist(radius: float, speed_in_per_s: float, geometry: RoverGeometry
     v = float(centre_speed(r, x, g, threshold, max_corner_angle=max_corner_angle))
     if abs(r) >= threshold:
         r = math.inf
-    return cast(Twist, frames.rover_twist(r, v))  # scalars in: a Twist
+    return cast(Twist, sources.rover_twist(r, v))  # scalars in: a Twist
 
 
 class SandboxCommand(NamedTuple):

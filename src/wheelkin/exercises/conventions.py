@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from wheelkin import frames, units
+from wheelkin import frames, sources, units
 from wheelkin.exercises import Case, Exercise
 
 __all__ = ["encoder_steps_to_metres", "firmware_pose", "heading_error", "icr_of",
@@ -29,7 +29,7 @@ __all__ = ["encoder_steps_to_metres", "firmware_pose", "heading_error", "icr_of"
 
 def rover_radius(radius_in: float) -> float:
     """The rover document's turning radius (inches, > 0 turns right) as ours (m, > 0 left)."""
-    return frames.rover_radius_to_ours(radius_in)
+    return sources.rover_radius_to_ours(radius_in)
 
 
 Exercise(
@@ -55,7 +55,7 @@ Exercise(
 def firmware_pose(X_mm: float, Y_mm: float, theta: float) -> NDArray[np.float64]:
     """The firmware's pose (mm, mm, rad; X right, Y forward, theta CCW from +Y) as our
     ``[x, y, theta]`` in metres and radians."""
-    return frames.firmware_pose_to_ours(X_mm, Y_mm, theta).as_array()
+    return sources.firmware_pose_to_ours(X_mm, Y_mm, theta).as_array()
 
 
 Exercise(
@@ -151,7 +151,7 @@ Exercise(
 def mecanum_twist(Vx_ftps: float, Vy_ftps: float, omega: float) -> NDArray[np.float64]:
     """The mecanum simulator's body twist (ft/s right, ft/s forward, rad/s) as our
     ``[vx, vy, omega]`` (m/s, m/s, rad/s)."""
-    return frames.mecanum_doc_twist_to_ours(Vx_ftps, Vy_ftps, omega).as_array()
+    return sources.mecanum_doc_twist_to_ours(Vx_ftps, Vy_ftps, omega).as_array()
 
 
 Exercise(

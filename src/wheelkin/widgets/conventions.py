@@ -24,7 +24,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import FancyArrowPatch, Polygon
 from numpy.typing import ArrayLike
 
-from wheelkin import frames
+from wheelkin import frames, sources
 from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 
@@ -156,14 +156,14 @@ class TwistView:
             self.icr_label.set_position((float(np.clip(world[0], -LIMIT, LIMIT)) + 0.05,
                                          float(np.clip(world[1], -LIMIT, LIMIT)) + 0.05))
             self.icr_label.set_text("ICR" if inside else "")
-        vx_doc, vy_doc, w_doc = frames.ours_to_mecanum_doc_twist(twist)
+        vx_doc, vy_doc, w_doc = sources.ours_to_mecanum_doc_twist(twist)
         lines = ["ours (m/s, rad/s):", f"  vx = {vx:+.2f}  vy = {vy:+.2f}",
                  f"  ω  = {omega:+.2f}", f"  {where}",
                  "mecanum sim. (ft/s):",
                  f"  Vx = {vx_doc + 0.0:+.2f}  Vy = {vy_doc + 0.0:+.2f}",
                  f"  ω  = {w_doc + 0.0:+.2f}", "rover document:"]
         if vy == 0 and omega != 0 and vx != 0:
-            r_in = frames.ours_to_rover_radius(vx / omega)
+            r_in = sources.ours_to_rover_radius(vx / omega)
             side = "right" if r_in > 0 else "left"
             lines.append(f"  r_OSR = {r_in:+.1f} in ({side})")
         elif vy == 0 and omega == 0:
