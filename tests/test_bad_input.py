@@ -245,7 +245,7 @@ import typing  # noqa: E402
 #: Callables that read a sandbox vehicle (the sandbox is validated on its own, not here).
 SANDBOX_BOUND: set[str] = set()
 FORMULA_MODULES = ("units", "frames", "sources", "rover", "mecanum", "diffdrive", "odometry",
-                   "waypoints", "follower", "unified")
+                   "odometry_uncertainty", "waypoints", "follower", "unified")
 
 
 def _good_values() -> dict:
@@ -396,9 +396,9 @@ OVERRIDES = {
     "units.distance_to_steps": {"distance": 0.5, "steps_per_m": 8043.7},
     "diffdrive.body_twist_steps": {"left": 1000.0, "right": 1200.0, "track_width_mm": 85.0,
                                    "steps_per_m": 8043.0},
-    "odometry.monte_carlo_poses": {"rng": None},
-    "odometry.propagate_covariance": {"delta_left": 0.1, "delta_right": 0.12},
-    "odometry.step_jacobians": {"delta_left": 0.1, "delta_right": 0.12},
+    "odometry_uncertainty.monte_carlo_poses": {"rng": None},
+    "odometry_uncertainty.propagate_covariance": {"delta_left": 0.1, "delta_right": 0.12},
+    "odometry_uncertainty.step_jacobians": {"delta_left": 0.1, "delta_right": 0.12},
     "waypoints.Segment": {"kind": "straight", "start": (0.0, 0.0, 0.0),
                           "end": (1.0, 0.0, 0.0), "length": 1.0, "heading_change": 0.0,
                           "radius": math.inf},
@@ -437,7 +437,7 @@ def _resolve(qualname: str, kwargs: dict) -> dict:
         kwargs["geometry"] = rover.OSR_GEOMETRY_SI
     if qualname == "unified.rover_wheels":
         kwargs["geometry"] = rover.OSR_GEOMETRY
-    if qualname == "odometry.monte_carlo_poses":
+    if qualname == "odometry_uncertainty.monte_carlo_poses":
         kwargs["rng"] = np.random.default_rng(0)
         kwargs["runs"] = 5
     if qualname == "waypoints.WheelCommand":

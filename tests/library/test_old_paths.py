@@ -12,6 +12,10 @@ import importlib
 import pytest
 
 MOVED = {
+    "odometry_uncertainty": ("odometry", ["PathCovariance", "PoseCovariance", "StepJacobians",
+                                          "UmbmarkCorrection", "monte_carlo_poses",
+                                          "propagate_covariance", "propagate_path",
+                                          "step_jacobians", "umbmark_correction"]),
     "sources": ("frames", ["FirmwarePose", "MecanumDocPose", "MecanumDocTwist",
                            "firmware_pose_to_ours", "lab_pose_to_ours",
                            "mecanum_doc_heading_to_ours", "mecanum_doc_pose_to_ours",
