@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from wheelkin import follower as fo
 from wheelkin import waypoints as wp
 
 R_W, D = 0.04, 0.06  # the Webots tutorial robot: wheel radius, half axle (m)
@@ -332,7 +333,7 @@ def _kinematic_run(follower, pose, *, period=8, dt=1 / 240, tau=0.05, max_time=1
     ((1.5, -1.5, math.pi / 2), 0.6),  # turns only 60 % of what it is told
 ])
 def test_follower_reaches_every_waypoint_without_touching_a_wall(start, scale_yaw):
-    f = wp.PathFollower(wp.plan_segments(wp.LAB_WAYPOINTS))
+    f = fo.PathFollower(wp.plan_segments(wp.LAB_WAYPOINTS))
     path, t = _kinematic_run(f, start, scale_yaw=scale_yaw)
     assert f.done
     assert np.max(wp.waypoint_errors(path)[1:]) < 0.02  # P0 is where it was put
@@ -344,7 +345,7 @@ def test_follower_reaches_every_waypoint_without_touching_a_wall(start, scale_ya
 
 
 def test_follower_turns_toward_a_carrot_behind_and_reset():
-    f = wp.PathFollower(wp.plan_segments([[0, 0], [1, 0]]), max_turn_rate=1.5)
+    f = fo.PathFollower(wp.plan_segments([[0, 0], [1, 0]]), max_turn_rate=1.5)
     v, w = f.command((0.5, 0.0, math.pi))  # facing backwards
     assert v == 0 and abs(w) == pytest.approx(1.5)
     f.index = 1
@@ -358,15 +359,15 @@ def test_follower_bad_input():
     for name in ("speed", "lookahead", "heading_gain", "max_turn_rate", "heading_tolerance",
                  "approach_gain"):
         with pytest.raises(ValueError, match=name):
-            wp.PathFollower(segs, **{name: 0.0})
+            fo.PathFollower(segs, **{name: 0.0})
     with pytest.raises(ValueError, match="min_speed"):
-        wp.PathFollower(segs, min_speed=0.0)
+        fo.PathFollower(segs, min_speed=0.0)
     with pytest.raises(ValueError, match="min_speed"):
-        wp.PathFollower(segs, speed=0.1, min_speed=0.2)
+        fo.PathFollower(segs, speed=0.1, min_speed=0.2)
     with pytest.raises(ValueError, match="segments"):
-        wp.PathFollower([1, 2])
+        fo.PathFollower([1, 2])
     with pytest.raises(ValueError, match="pose"):
-        wp.PathFollower(segs).command((0.0, float("nan"), 0.0))
+        fo.PathFollower(segs).command((0.0, float("nan"), 0.0))
 
 
 # --------------------------------------------------------------------------- helpers
@@ -486,7 +487,7 @@ def test_schedule_controller_drives_a_rolling_robot_along_the_plan():
     world = sb.World(dt=1 / 240)
     # start already rolling at the first command's speed: no start-up slip
     robot = world.add(spec, pose=segs[0].start, twist=(cmds[0].speed, 0.0, 0.0))
-    ctrl = wp.ScheduleController(robot, cmds)
+    ctrl = fo.ScheduleController(robot, cmds)
     world.run(wp.schedule_times(cmds)[-1] + 0.5, ctrl)
     assert ctrl.done
     np.testing.assert_allclose(ctrl.switch_times, wp.schedule_times(cmds))
@@ -506,7 +507,7 @@ def test_schedule_controller_switching_on_encoders():
     cmds = wp.schedule(segs, 0.04, 0.06, wheel_rate=2.0)  # 0.08 m/s
     world = sb.World(dt=1 / 240)
     robot = world.add(spec, pose=segs[0].start, twist=(0.08, 0.0, 0.0))
-    ctrl = wp.ScheduleController(robot, cmds, switch="encoders", period=0.05)
+    ctrl = fo.ScheduleController(robot, cmds, switch="encoders", period=0.05)
     world.run(8.0, ctrl)
     assert ctrl.done
     # it stops at the first check after the wheels rolled 0.5 m: at most one period later
@@ -522,7 +523,7 @@ def test_follower_controller_reaches_a_corner_on_a_skid_steer():
     segs = wp.plan_segments([[0, 0], [0.6, 0], [0.6, 0.4]], arc_radius=None)
     world = sb.World(dt=0.008)
     robot = world.add(sb.LAB_ROBOT.replace(motor_time_constant=0.05), pose=segs[0].start)
-    ctrl = wp.FollowerController(robot, wp.PathFollower(segs), wheel_radius=0.04,
+    ctrl = fo.FollowerController(robot, fo.PathFollower(segs), wheel_radius=0.04,
                                  track_width=0.12 * chi, max_wheel_rate=10.0)
     traj = world.run(8.0, ctrl)
     assert ctrl.finish_time is not None and ctrl.follower.done
@@ -540,20 +541,20 @@ def test_controllers_reject_bad_input():
     segs = wp.plan_segments([[0, 0], [1, 0]])
     cmds = wp.schedule(segs, 0.04, 0.06)
     with pytest.raises(TypeError, match="robot"):
-        wp.ScheduleController(object(), cmds)
+        fo.ScheduleController(object(), cmds)
     with pytest.raises(ValueError, match="switch"):
-        wp.ScheduleController(robot, cmds, switch="distance")
+        fo.ScheduleController(robot, cmds, switch="distance")
     with pytest.raises(ValueError, match="commands"):
-        wp.ScheduleController(robot, segs)
+        fo.ScheduleController(robot, segs)
     with pytest.raises(TypeError, match="follower"):
-        wp.FollowerController(robot, segs, wheel_radius=0.04, track_width=0.12)
-    f = wp.PathFollower(segs)
+        fo.FollowerController(robot, segs, wheel_radius=0.04, track_width=0.12)
+    f = fo.PathFollower(segs)
     with pytest.raises(ValueError, match="track_width"):
-        wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.0)
+        fo.FollowerController(robot, f, wheel_radius=0.04, track_width=0.0)
     with pytest.raises(ValueError, match="max_wheel_rate"):
-        wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, max_wheel_rate=-1)
+        fo.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, max_wheel_rate=-1)
     with pytest.raises(ValueError, match="pose"):
-        wp.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, pose=(0, 0))
+        fo.FollowerController(robot, f, wheel_radius=0.04, track_width=0.12, pose=(0, 0))
 
 
 # --------------------------------------------------------------------------- the panel

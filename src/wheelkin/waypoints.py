@@ -16,9 +16,12 @@ The pieces, in the order the chapter uses them:
 - :func:`schedule`: the lab's open-loop plan, per segment the left and right wheel rates and the
   duration (:class:`WheelCommand`); :func:`quantise` rounds the durations to a control period.
 - :func:`average_encoder_odometry`: the lab's position update, with the pieces it leaves out.
-- The feedback follower and the controllers that drive a robot (``PathFollower``,
-  ``ScheduleController``, ``FollowerController``) live in :mod:`wheelkin.follower`; they stay
-  importable from here under their old names.
+
+Plans and schedules only: what drives a robot along them (the feedback follower
+:class:`~wheelkin.follower.PathFollower`, the controllers
+:class:`~wheelkin.follower.ScheduleController` and
+:class:`~wheelkin.follower.FollowerController`) is in :mod:`wheelkin.follower`, which builds on
+this module (never the reverse).
 
 Symbols (the chapter's): :math:`r_w` wheel radius, :math:`d` half the axle (the lab's
 :math:`d_{mid}`, so the track is :math:`W = 2d`), :math:`R` the radius of a quarter circle
@@ -38,7 +41,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any, cast
+from typing import cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -661,16 +664,3 @@ def waypoint_errors(path: ArrayLike, waypoints: ArrayLike = LAB_WAYPOINTS) -> np
     if w.ndim != 2 or w.shape[1] != 2:
         raise ValueError(f"waypoints must have shape (M, 2), got shape {w.shape}")
     return np.min(np.linalg.norm(p[None, :, :2] - w[:, None, :], axis=-1), axis=1)
-
-
-#: Names that moved to :mod:`wheelkin.follower`, importable from here as before.
-_MOVED_TO_FOLLOWER = ("FollowerController", "PathFollower", "ScheduleController")
-
-
-def __getattr__(name: str) -> Any:
-    # imported on first use: wheelkin.follower imports this module
-    if name in _MOVED_TO_FOLLOWER:
-        from wheelkin import follower
-
-        return getattr(follower, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
