@@ -309,7 +309,17 @@ def test_ros2_four_argument_odometry_uses_the_small_angle_form():
     (lambda: C.optimal_arm_angle(2.5, 1.5, 0.2, 0.0), "max_inner_angle must be in"),
     (lambda: C.optimal_arm_angle(2.5, 1.5, 0.2, 0.5, samples=2), "samples must be"),
     (lambda: C.optimal_arm_angle(2.5, 1.5, 0.2, 0.5, tolerance=0), "tolerance"),
+    # where the formula overflows: a refusal naming the inputs, never a warning or 90 degrees
+    (lambda: C.steering_angle(5e-324, 1.0), "radius is too small for the wheelbase"),
+    (lambda: C.minimum_radius(5e-324, 1.0), "max_steering_angle, wheelbase and track_width"),
+    (lambda: C.pure_pursuit_curvature(1e-170, 1e-170), "x and y is out of range"),
+    (lambda: C.linkage_angles(0.3, 1e300, 0.15, 0.3), "track_width and arm_length"),
 ])
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+def test_a_far_look_ahead_point_is_straight_ahead():
+    assert C.pure_pursuit_curvature(1e300, 0.0) == 0.0
+    assert C.pure_pursuit_curvature(0.0, 1e300) == 0.0  # 2/1e300 underflows to 0

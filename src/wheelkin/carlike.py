@@ -145,7 +145,12 @@ def steering_angle(radius: ArrayLike, wheelbase: float) -> float | NDArray[np.fl
     """
     R = _radius("radius", radius)
     L = V.positive("wheelbase", wheelbase)
-    return _out(np.arctan(L / R) + 0.0)
+    with np.errstate(all="ignore"):
+        delta = np.arctan(L / R) + 0.0
+    if np.any(np.abs(delta) >= _HALF_PI):  # L/R overflowed: a radius of a few 1e-308 m
+        raise ValueError(f"radius is too small for the wheelbase: the steering angle rounds to "
+                         f"90 degrees, got {radius!r}")
+    return _out(delta)
 
 
 def steering_from_curvature(curvature: ArrayLike, wheelbase: float) -> float | NDArray[np.float64]:
@@ -451,7 +456,9 @@ def minimum_radius(max_steering_angle: ArrayLike, wheelbase: float,
                          f"{max_steering_angle!r}")
     L = V.positive("wheelbase", wheelbase)
     W = V.nonnegative("track_width", track_width)
-    return _out(L / np.tan(d) + W / 2)
+    with np.errstate(all="ignore"):
+        out = L / np.tan(d) + W / 2
+    return _out(V.finite_result("max_steering_angle, wheelbase and track_width", out))
 
 
 def pure_pursuit_curvature(x: ArrayLike, y: ArrayLike) -> float | NDArray[np.float64]:
@@ -484,11 +491,12 @@ def pure_pursuit_curvature(x: ArrayLike, y: ArrayLike) -> float | NDArray[np.flo
     px = V.finite_array("x", x)
     py = V.finite_array("y", y)
     px, py = V.broadcast(x=px, y=py)
-    d2 = px * px + py * py
-    if np.any(d2 == 0):
+    if np.any((px == 0) & (py == 0)):
         raise ValueError("(x, y) must not be the origin (the look-ahead point is where the "
                          "vehicle is)")
-    return _out(2.0 * py / d2 + 0.0)
+    with np.errstate(all="ignore"):  # far points: 0; tiny ones overflow and are refused
+        out = 2.0 * py / (px * px + py * py) + 0.0
+    return _out(V.finite_result("x and y", out))
 
 
 # ---------------------------------------------------------------------------- linkages
@@ -515,7 +523,9 @@ def _follower(driver, W, a, b, tie):
     plx, ply = a * np.cos(ang), W / 2 + a * np.sin(ang)
     dx, dy = plx, ply + W / 2  # from the right kingpin to the left arm's end
     d = np.hypot(dx, dy)
-    c = (a * a + d * d - tie * tie) / (2.0 * a * d)
+    with np.errstate(all="ignore"):
+        c = (a * a + d * d - tie * tie) / (2.0 * a * d)
+    V.finite_result("track_width and arm_length", c)
     if np.any(np.abs(c) > 1.0):
         return None
     psi = np.arctan2(dy, dx) + np.arccos(c)
