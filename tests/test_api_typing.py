@@ -35,6 +35,7 @@ from pathlib import Path
 import pytest
 
 import wheelkin
+from wheelkin._registry import FORMULA_MODULES
 
 SRC = Path(wheelkin.__file__).resolve().parent
 
@@ -267,8 +268,8 @@ def test_annotations_resolve() -> None:
 def test_the_walk_sees_the_whole_api() -> None:
     """The walk is not vacuous: it reaches the subpackages and the methods of classes."""
     modules = public_modules("wheelkin")
-    for name in ("wheelkin.frames", "wheelkin.sandbox.world", "wheelkin.widgets",
-                 "wheelkin.exercises.rover"):
+    for name in (*(f"wheelkin.{m}" for m in FORMULA_MODULES), "wheelkin.sandbox.world",
+                 "wheelkin.widgets", "wheelkin.exercises.rover"):
         assert name in modules
     assert not any(part.startswith("_") for m in modules for part in m.split("."))
     without_all = [m for m in modules

@@ -242,10 +242,11 @@ import importlib  # noqa: E402
 import inspect  # noqa: E402
 import typing  # noqa: E402
 
+from wheelkin import _registry  # noqa: E402
+
 #: Callables that read a sandbox vehicle (the sandbox is validated on its own, not here).
 SANDBOX_BOUND: set[str] = set()
-FORMULA_MODULES = ("units", "frames", "sources", "rover", "mecanum", "diffdrive", "odometry",
-                   "odometry_uncertainty", "waypoints", "follower", "unified")
+FORMULA_MODULES = _registry.FORMULA_MODULES
 
 
 def _good_values() -> dict:
@@ -303,6 +304,10 @@ def _good_values() -> dict:
         "follower": PathFollower(segs), "odometry_track_width": 0.3, "max_wheel_rate": 10.0,
         "skid_factor": 1.5, "motor_time_constant": 0.05, "wheelbase": 0.1,
         "name": "FL", "position": (0.1, 0.2), "driven_wheels": None,
+        # carlike
+        "inner_angle": 0.3, "steering_angle": 0.2, "front_speed": 1.0, "rear_to_com": 0.05,
+        "max_steering_angle": 0.5, "arm_length": 0.15, "arm_angle": 0.3, "max_inner_angle": 0.6,
+        "curvature": 0.2,
         # unified
         "wheels": unified.mecanum_wheels(mecanum.EXAMPLE_GEOMETRY), "rates": [1.0] * 4,
         "wheel": unified.mecanum_wheels(mecanum.EXAMPLE_GEOMETRY)[0], "caster": True,

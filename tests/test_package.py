@@ -5,8 +5,8 @@ is downloaded for the build), installs it into a new virtual environment togethe
 runtime dependencies only, and checks there that
 
 - nothing but wheelkin and numpy was installed;
-- every formula module imports, and none of them pulls in matplotlib, pymunk, ipywidgets,
-  sympy or scipy;
+- every formula module (``wheelkin._registry.FORMULA_MODULES``, the one list) imports, and
+  none of them pulls in matplotlib, pymunk, ipywidgets, sympy or scipy;
 - the package ships ``py.typed``;
 - the formula modules' doctests pass (pytest is added to the environment for this last step,
   after the import check).
@@ -24,9 +24,9 @@ from pathlib import Path
 
 import pytest
 
+from wheelkin._registry import FORMULA_MODULES, SUPPORT_MODULES
+
 ROOT = Path(__file__).resolve().parents[1]
-FORMULA_MODULES = ("units", "frames", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
-                   "follower", "unified")
 HEAVY = ("matplotlib", "pymunk", "ipywidgets", "sympy", "scipy", "IPython")
 
 pytestmark = pytest.mark.package
@@ -106,6 +106,6 @@ def test_formula_modules_doctests_pass_in_the_installed_package(installed, tmp_p
                "-o", "doctest_optionflags=NORMALIZE_WHITESPACE NUMBER ELLIPSIS",
                "-o", "addopts=", "-W", "error",
                "--pyargs",
-               *(f"wheelkin.{name}" for name in ("_kernels", "_validate", *FORMULA_MODULES)),
+               *(f"wheelkin.{name}" for name in (*SUPPORT_MODULES, *FORMULA_MODULES)),
                cwd=tmp_path, timeout=240.0)
     assert " passed" in out and "failed" not in out and "deselected" not in out
