@@ -6,13 +6,19 @@ temporary directory, the edit applied there (the working tree is never touched),
 module's own test files are run against the copy (``PYTHONPATH`` puts it first). A mutant is
 *killed* when a test fails. Prints one line per mutant and the kill rate.
 
-The set covers the formula modules and the solver core of the sandbox's contact model
+The set covers every formula module of ``wheelkin._registry.FORMULA_MODULES`` (the one list:
+:func:`uncovered` names a module without a mutant, and the run refuses to start while there is
+one), the arc and integer kernels, and the solver core of the sandbox's contact model
 (``sandbox/contact.py``: the stick shortcut, the friction-cap and slip tolerances, Newton's
 method, the stick/slip partitions, projected Gauss-Seidel, the dissipation objective).
 Mutants that cannot change behaviour are not in the set; ``EQUIVALENT`` lists them with the
 reason. Before any mutant, the unmutated library must pass the same tests.
 
-Usage: ``python tools/mutation.py [--only SUBSTRING] [--timeout 300]`` (``make mutation``).
+A mutant names its test files by their stem (``frames`` is ``test_frames.py``), found in
+whichever layer folder of ``tests/`` holds it.
+
+Usage: ``python -m tools.mutation [--only SUBSTRING] [--timeout 300] [--check]``
+(``make mutation``); ``--check`` only verifies that every mutant's text is in its module once.
 """
 
 from __future__ import annotations
@@ -80,6 +86,59 @@ MUTANTS = [
      "dtheta = r * (mean_r - mean_l) / self.track_width * h"),
     ("units", "units", "rpm: per second instead of per minute",
      "RPM = 2.0 * math.pi / 60.0", "RPM = 2.0 * math.pi"),
+    ("sources", "frames", "firmware pose: X kept as our y (not its negative)",
+     "(y_fw * MM, _no_negative_zero(-x_fw * MM), th)",
+     "(y_fw * MM, _no_negative_zero(x_fw * MM), th)"),
+    ("sources", "frames", "mecanum twist: the document's rightward speed kept as leftward",
+     "_no_negative_zero(-vx_doc * FOOT)", "_no_negative_zero(vx_doc * FOOT)"),
+    ("sources", "frames", "rover twist: the document's radius sign kept",
+     "big_r = np.where(straight, 1.0, -r * INCH)", "big_r = np.where(straight, 1.0, r * INCH)"),
+    ("sources", "frames", "mecanum heading: clockwise read as counter-clockwise",
+     "return _wrap(_no_negative_zero(math.pi / 2 - p))",
+     "return _wrap(_no_negative_zero(p - math.pi / 2))"),
+    ("odometry_uncertainty", "odometry_uncertainty", "covariance: wheel noise not per metre",
+     "q = np.diag([kl * abs(left), kr * abs(right)])", "q = np.diag([kl, kr])"),
+    ("odometry_uncertainty", "odometry_uncertainty", "jacobian: heading's effect on x reversed",
+     "f_pose[..., 0, 2] = -dy", "f_pose[..., 0, 2] = dy"),
+    ("odometry_uncertainty", "odometry_uncertainty", "monte carlo: variance used as the spread",
+     "sd = np.sqrt(np.array([kl, kr]) * np.abs(np.stack([left, right], axis=-1)))",
+     "sd = np.array([kl, kr]) * np.abs(np.stack([left, right], axis=-1))"),
+    ("odometry_uncertainty", "odometry_uncertainty", "umbmark: sign of alpha from x",
+     "alpha_x = -(cw[0] + ccw[0]) / (4.0 * length)",
+     "alpha_x = (cw[0] + ccw[0]) / (4.0 * length)"),
+    ("waypoints", "waypoints", "schedule: arc's yaw rate about the centre, not the outer wheel",
+     "body_rate = outer_speed / (big_r + d)", "body_rate = outer_speed / big_r"),
+    ("waypoints", "waypoints", "schedule: a turn in place timed on the whole axle",
+     "duration = abs(seg.heading_change) * d / outer_speed",
+     "duration = abs(seg.heading_change) * 2 * d / outer_speed"),
+    ("waypoints", "waypoints", "quantise: rounds to the nearest period, not up",
+     "n = math.ceil(c.duration / period - 1e-9)", "n = round(c.duration / period)"),
+    ("waypoints", "waypoints", "average-encoder odometry: heading change doubled",
+     "/ 2 / (2 * d)", "/ (2 * d)"),
+    ("unified", "unified", "rolling row: a Swedish row not scaled by u.e",
+     "return roller_row(w) / float(w.roller_axis @ w.rolling_direction)",
+     "return roller_row(w)"),
+    ("unified", "unified", "wheel rates: rim speeds not divided by the radius",
+     "return (xi @ rolling_matrix(w).T) / radii", "return xi @ rolling_matrix(w).T"),
+    ("unified", "unified", "mobility: steerability not capped by 2 - rank C1f",
+     "delta_s = max(0, min(rank_s, 2 - rank_f))", "delta_s = max(0, rank_s)"),
+    ("unified", "unified", "steering for a twist: lever of y with the wrong sign",
+     "cx, cy = vx - omega * y, vy + omega * x", "cx, cy = vx + omega * y, vy + omega * x"),
+    ("unified", "unified", "mecanum wheels: roller angles mirrored",
+     "roller_angle=-float(s) * geometry.roller_angle",
+     "roller_angle=float(s) * geometry.roller_angle"),
+    ("carlike", "carlike", "bicycle: yaw rate with sin instead of tan",
+     "v * np.tan(d) / L + 0.0], axis=-1)", "v * np.sin(d) / L + 0.0], axis=-1)"),
+    ("carlike", "carlike", "ackermann: outer angle without the track",
+     "np.arctan(L * t / (L + W * t)) + 0.0)", "np.arctan(L * t / L) + 0.0)"),
+    ("carlike", "carlike", "ackermann pair: inner and outer radii swapped",
+     "_out(np.arctan(L / (R - W / 2)) + 0.0)", "_out(np.arctan(L / (R + W / 2)) + 0.0)"),
+    ("carlike", "carlike", "pure pursuit: curvature halved",
+     "out = 2.0 * py / (px * px + py * py) + 0.0", "out = py / (px * px + py * py) + 0.0"),
+    ("carlike", "carlike", "side slip: from the front axle instead of the rear",
+     "np.arctan(lr * np.tan(d) / L) + 0.0)", "np.arctan((L - lr) * np.tan(d) / L) + 0.0)"),
+    ("carlike", "carlike", "linkage: tie rod with one arm's projection",
+     "    tie = W - 2.0 * a * math.sin(b)\n", "    tie = W - a * math.sin(b)\n"),
 ]
 
 # The contact solver (sandbox/contact.py): its solver core only (the stick shortcut, the
@@ -199,6 +258,35 @@ EQUIVALENT = [
 ]
 
 
+def test_files(names: str) -> list[str]:
+    """The test files named by stem (``"frames odometry"``), wherever under tests/ they are."""
+    out = []
+    for name in names.split():
+        found = sorted((ROOT / "tests").rglob(f"test_{name}.py"))
+        if len(found) != 1:
+            raise SystemExit(f"mutation: test_{name}.py is in {len(found)} places under tests/")
+        out.append(str(found[0]))
+    return out
+
+
+def uncovered() -> list[str]:
+    """The formula modules (wheelkin._registry.FORMULA_MODULES) that no mutant edits."""
+    from wheelkin._registry import FORMULA_MODULES
+
+    mutated = {m[0] for m in MUTANTS}
+    return [name for name in FORMULA_MODULES if name not in mutated]
+
+
+def stale(mutants: list[tuple[str, str, str, str, str]]) -> list[str]:
+    """The mutants whose text is not in their module exactly once."""
+    out = []
+    for module, _, what, old, _ in mutants:
+        text = (ROOT / "src" / "wheelkin" / f"{module}.py").read_text(encoding="utf-8")
+        if text.count(old) != 1:
+            out.append(f"{module}: {what} (found {text.count(old)} times)")
+    return out
+
+
 def _pytest(src: Path, files: list[str], tmp: str, timeout: float) -> bool:
     """True if the test files pass against the library in ``src``."""
     env = dict(os.environ, PYTHONPATH=str(src), PYTHONDONTWRITEBYTECODE="1")
@@ -214,9 +302,13 @@ def _pytest(src: Path, files: list[str], tmp: str, timeout: float) -> bool:
 
 def run(only: str | None, timeout: float) -> int:
     chosen = [m for m in MUTANTS if only is None or only in f"{m[0]} {m[2]}"]
+    missing = uncovered()
+    if missing:
+        print(f"formula modules without a mutant (add some to MUTANTS): {', '.join(missing)}")
+        return 2
     begin = time.perf_counter()
     # The unmutated library must pass the very tests that judge the mutants.
-    files = sorted({str(ROOT / "tests" / f"test_{t}.py") for m in chosen for t in m[1].split()})
+    files = sorted({f for m in chosen for f in test_files(m[1])})
     if not _pytest(ROOT / "src", files, str(ROOT), timeout):
         print("the unmutated library fails these tests; fix that first:\n  " + "\n  ".join(files))
         return 2
@@ -233,8 +325,7 @@ def run(only: str | None, timeout: float) -> int:
                 continue
             path.write_text(text.replace(old, new))
             start = time.perf_counter()
-            dead = not _pytest(src, [str(ROOT / "tests" / f"test_{t}.py") for t in tests.split()],
-                               tmp, timeout)
+            dead = not _pytest(src, test_files(tests), tmp, timeout)
             killed += dead
             tally = per_module.setdefault(module, [0, 0])
             tally[0] += 1
@@ -256,5 +347,11 @@ if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--only", default=None)
     parser.add_argument("--timeout", type=float, default=300.0)
+    parser.add_argument("--check", action="store_true",
+                        help="only check that every mutant's text is in its module once")
     args = parser.parse_args()
+    if args.check:
+        problems = stale(MUTANTS) + [f"{m}: no mutant" for m in uncovered()]
+        print("\n".join(problems) or f"{len(MUTANTS)} mutants, every formula module covered")
+        raise SystemExit(1 if problems else 0)
     raise SystemExit(run(args.only, args.timeout))
