@@ -29,6 +29,8 @@ from __future__ import annotations
 import os
 from typing import Any
 
+import numpy as np
+
 __all__ = ["CHECK_ENV", "COLUMN_WIDTH_IN", "DPI", "MIN_FONT_PT", "MIN_TEXT_PX", "FigureCheckError",
            "assert_readable", "check_figure", "checking", "fixed_layout", "min_font_pt", "setup"]
 
@@ -205,21 +207,33 @@ def _wrap_png_formatter(shell: Any) -> None:
 
 
 def _undrawn_tick_labels(fig: Any) -> set[int]:
-    """ids of the tick labels matplotlib keeps but does not draw: ticks outside the view.
+    """ids of the axis texts matplotlib keeps but does not draw: ticks outside the view, and
+    every text of an axis that is switched off.
 
-    A locator places ticks beyond the axis limits (a plot of 0..1 has a tick at -0.2); their
-    labels are visible Text objects that are never drawn, so they are not checked.
+    A locator places ticks beyond the axis limits (a plot of 0..1 has a tick at -0.2; a log
+    axis from 1e-10 to 0.1 one at 1e-12); their labels are visible Text objects that are never
+    drawn, so they are not checked. The limits are compared on the axis's own scale (decades
+    on a log axis). An axes with ``axis("off")`` draws none of its axes' texts.
     """
+    from matplotlib.text import Text
+
     skip: set[int] = set()
     for ax in fig.get_axes():
         for axis in (getattr(ax, "xaxis", None), getattr(ax, "yaxis", None)):
             if axis is None:
                 continue
-            lo, hi = sorted(axis.get_view_interval())
+            if not getattr(ax, "axison", True):
+                skip.update(id(text) for text in axis.findobj(Text))
+                continue
+            scale = axis.get_transform()
+            with np.errstate(all="ignore"):
+                lo, hi = sorted(scale.transform(np.asarray(axis.get_view_interval(), float)))
             tol = 1e-9 * max(1.0, abs(lo), abs(hi))
             for tick in axis.get_major_ticks() + axis.get_minor_ticks():
                 loc = tick.get_loc()
-                if loc is None or not lo - tol <= loc <= hi + tol:
+                with np.errstate(all="ignore"):
+                    where = None if loc is None else float(scale.transform([loc])[0])
+                if where is None or not lo - tol <= where <= hi + tol:
                     skip.update({id(tick.label1), id(tick.label2)})
     return skip
 

@@ -178,3 +178,26 @@ def test_public_functions_are_typed_and_documented():
                    for p in signature.parameters.values()), name
         assert fn.__doc__ and fn.__doc__.strip(), name
 
+
+
+# ------------------------------------------------- the check show_figure relies on (style)
+
+
+def test_tick_labels_beyond_a_log_axis_are_not_checked():
+    # 1e-10 .. 0.1 on a log axis: the locator also places 1e-12 below the axis, never drawn;
+    # an absolute tolerance of 1e-9 would have counted it as inside (and cut off).
+    fig, ax = plt.subplots(figsize=(4, 3), dpi=100)
+    ax.semilogy([0, 1], [1e-9, 1e-2])
+    ax.set_ylim(1e-10, 1e-1)
+    drawn = {t.get_text() for t in ax.get_yticklabels() if t.get_visible()}
+    assert any("-12" in t for t in drawn)  # the tick exists ...
+    display.show_figure(fig)  # ... and is not reported
+
+
+def test_an_axis_that_is_off_is_not_checked():
+    fig, ax = plt.subplots(figsize=(3, 3), dpi=100)
+    ax.plot([0, 1], [0, 1])
+    ax.set_position([0.0, 0.0, 1.0, 1.0])  # tick labels would lie outside the figure ...
+    assert any(p.startswith("cut off") for p in style.check_figure(fig))
+    ax.axis("off")  # ... but are not drawn
+    display.show_figure(fig)
