@@ -40,7 +40,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("formula", (*SUPPORT_MODULES, *FORMULA_MODULES)),
     ("style", ("style",)),
     ("sandbox", ("sandbox",)),
-    ("book", ("animation", "display", "widgets", "exercises")),
+    ("book", ("animation", "display", "symbolic", "widgets", "exercises")),
 )
 
 

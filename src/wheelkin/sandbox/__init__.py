@@ -13,7 +13,8 @@ encoder quantisation, friction limits)::
 Modules: :mod:`.vehicles` (geometry, the four vehicles, ideal wheel commands),
 :mod:`.contact` (the friction-limited wheel-ground contact), :mod:`.world` (world, robots,
 exact SE(2) stepping, walls), :mod:`.sensors` (encoders), :mod:`.render` (drawings and
-animations). Everything is SI and REP-103 (x forward, y left, heading counter-clockwise).
+animations), :mod:`.runs` (a twist schedule driven open loop, and what its run is compared
+with). Everything is SI and REP-103 (x forward, y left, heading counter-clockwise).
 """
 
 try:

@@ -8,23 +8,33 @@ track width W the odometry assumes, % off the true one). It shows the true path,
 estimate and the Euler estimate, and their end-point errors.
 
 :func:`simulate_square` is the model behind it, usable on its own (the chapter uses it too).
+
+The chapter's sections share three more helpers: :func:`firmware_to_ours_mm` (the
+firmware's poses in our frame, in mm), :func:`wheel_increments` (the wheel travel per update
+along a path of arcs, in metres) and :func:`draw_ellipse` (the error ellipse of a position
+covariance).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.artist import Artist
-from numpy.typing import NDArray
+from matplotlib.axes import Axes
+from matplotlib.patches import Ellipse
+from numpy.typing import ArrayLike, NDArray
 
+from wheelkin import frames
 from wheelkin import odometry as odo
 from wheelkin.widgets import Panel, register
 
-__all__ = ["rounded_square", "simulate_square", "square_panel"]
+__all__ = ["draw_ellipse", "firmware_to_ours_mm", "rounded_square", "simulate_square",
+           "square_panel", "wheel_increments"]
 
 STEPS_PER_MM = 8.043  # Radon Ulzer: ENC = 8043 steps/m
 WHEEL_BASE_MM = 85.0  # Radon Ulzer: the track width W (wheel to wheel, side to side)
@@ -39,6 +49,68 @@ _VIEWS = {
     "counter-clockwise": ((-800, 800), (-300, 1300), "upper right", (0.02, 0.02, "bottom")),
     "clockwise": ((-800, 800), (-1300, 300), "lower right", (0.02, 0.98, "top")),
 }
+
+
+def firmware_to_ours_mm(rows: ArrayLike) -> NDArray[np.float64]:
+    """Firmware poses (X_mm, Y_mm, orientation_rad) as ours: (x_mm, y_mm, theta_rad).
+
+    :func:`wheelkin.frames.firmware_pose_to_ours` (Y forward, X right, orientation from +Y
+    counter-clockwise, to x forward, y left, theta from +x), in millimetres.
+
+    >>> firmware_to_ours_mm([[10.0, 250.0, 0.5]])  # 10 mm right, 250 mm forward
+    array([[250. , -10. ,   0.5]])
+    """
+    fw = np.asarray(rows, dtype=float)
+    if fw.ndim != 2 or fw.shape[1] != 3:
+        raise ValueError(f"rows must have shape (N, 3): (X_mm, Y_mm, orientation_rad) per "
+                         f"row, got shape {fw.shape}")
+    ours = frames.firmware_pose_to_ours(fw[:, 0], fw[:, 1], fw[:, 2])
+    return np.column_stack([1000 * ours[:, 0], 1000 * ours[:, 1], ours[:, 2]])
+
+
+def wheel_increments(segments: ArrayLike, track_width: float,
+                     max_step: float = 0.01) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The (left, right) wheel travel per update, m, along a path of arcs.
+
+    The per-update differences of :func:`wheelkin.odometry.plan_wheel_travel` (whose lengths
+    may be in any one unit; here metres): each ``(distance, turn)`` segment (m, rad) is split
+    into the fewest equal updates in which no wheel travels more than ``max_step``.
+
+    >>> left, right = wheel_increments([(0.0, math.pi / 2)], 0.085, 0.01)  # a quarter spin
+    >>> len(left), round(float(right.sum()), 6), round(float(left.sum()), 6)
+    (7, 0.066759, -0.066759)
+    """
+    travel = odo.plan_wheel_travel(segments, track_width, max_step)
+    steps = np.diff(travel, axis=0)
+    return steps[:, 0], steps[:, 1]
+
+
+def draw_ellipse(ax: Axes, centre: ArrayLike, covariance: ArrayLike, sigmas: float = 1.0,
+                 **kwargs: Any) -> Ellipse:
+    """Draw the ellipse of ``sigmas`` standard deviations of a 2 x 2 position covariance.
+
+    Its axes lie along the covariance's eigenvectors, half-lengths ``sigmas`` times the square
+    roots of the eigenvalues; it is not filled. ``kwargs`` go to the patch (colour, line
+    width, ...). Returns the patch, added to ``ax``.
+
+    >>> from matplotlib.figure import Figure
+    >>> ax = Figure().add_subplot()
+    >>> e = draw_ellipse(ax, (1.0, 2.0), [[4.0, 0.0], [0.0, 1.0]], sigmas=2.0)
+    >>> e.width, e.height, e.angle  # 2 sigmas: 2 x 2 x sqrt(4) along x, 2 x 2 x 1 along y
+    (8.0, 4.0, 0.0)
+    """
+    cov = np.asarray(covariance, dtype=float)
+    if cov.shape != (2, 2) or not np.all(np.isfinite(cov)):
+        raise ValueError(f"covariance must be a finite 2 x 2 matrix, got {covariance!r}")
+    values, vectors = np.linalg.eigh(cov)
+    if values[0] < -1e-9 * max(abs(values[1]), np.finfo(float).tiny):
+        raise ValueError(f"covariance must be positive semi-definite, got eigenvalues {values}")
+    angle = math.degrees(math.atan2(vectors[1, 1], vectors[0, 1]))
+    patch = Ellipse(centre, 2 * sigmas * math.sqrt(max(values[1], 0)),
+                    2 * sigmas * math.sqrt(max(values[0], 0)), angle=angle, fill=False,
+                    **kwargs)
+    ax.add_patch(patch)
+    return patch
 
 
 def rounded_square(side_mm: float = SIDE_MM, corner_radius_mm: float = CORNER_RADIUS_MM,

@@ -10,7 +10,9 @@
   steering.
 - :func:`twist_tour_animation`: the same view while the twist tours forward, every direction
   of a strafe, a tightening turn and a spin on the spot, for the HTML book.
-- :func:`manoeuvre_animation`: sandbox runs of the four vehicles side by side.
+- :func:`manoeuvre_animation`: sandbox runs of the four vehicles side by side;
+  :func:`run_manoeuvres` makes them (the chapter's :data:`MANOEUVRES`, each vehicle commanded
+  by the one model through :func:`wheelkin.sandbox.runs.drive_twist`).
 
 Our frame (x forward, y left, omega counter-clockwise), SI.
 """
@@ -26,11 +28,12 @@ from matplotlib.figure import Figure
 from wheelkin import unified
 from wheelkin.sandbox import LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER, RADON_ULZER
 from wheelkin.sandbox.render import PALETTE, SandboxAnimation, draw_vehicle
+from wheelkin.sandbox.runs import drive_twist, one_model_commands, planned_poses
 from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 
-__all__ = ["VEHICLES", "ConstraintView", "constraints_panel", "manoeuvre_animation",
-           "tour_twists", "twist_tour_animation"]
+__all__ = ["MANOEUVRES", "RAMP", "VEHICLES", "ConstraintView", "constraints_panel",
+           "manoeuvre_animation", "run_manoeuvres", "tour_twists", "twist_tour_animation"]
 
 #: The book's four vehicles as the sandbox builds them, in the chapter's order.
 VEHICLES = {
@@ -39,6 +42,11 @@ VEHICLES = {
     "mecanum": MECANUM_ROBOT,
     "rover": OPEN_SOURCE_ROVER,
 }
+#: The chapter's manoeuvres in the sandbox: title -> the body twist asked for, for 2 s.
+MANOEUVRES = {"strafe left 0.3 m/s for 2 s": (0.0, 0.3, 0.0),
+              "turn on the spot 1 rad/s for 2 s": (0.0, 0.0, 1.0)}
+#: s, each manoeuvre's command is ramped in over this time.
+RAMP = 0.25
 SLIDE_COLOUR = "#d62728"
 VELOCITY_COLOUR = "#1f77b4"
 #: Side slip below this (m/s) counts as none.
@@ -234,6 +242,40 @@ def twist_tour_animation(frames: int = 32, figsize: tuple[float, float] = (6.7, 
     update(0)
     return SandboxAnimation(fig, update, frames=len(twists), interval=250, blit=False,
                             repeat=True, colors=64, dynamic=[*view.artists, stamp])
+
+
+def run_manoeuvres(manoeuvres: dict | None = None, vehicles: dict | None = None, *,
+                   duration: float = 2.0, ramp: float = RAMP,
+                   dt: float = 1 / 240) -> dict[str, dict[str, tuple]]:
+    """Every vehicle through every manoeuvre in the sandbox, commanded by the one model.
+
+    Each run holds its manoeuvre's twist (ramped in over ``ramp`` seconds) for ``duration``
+    seconds, the wheel commands from :func:`wheelkin.sandbox.runs.one_model_commands`,
+    recorded at every step; its goal is the pose the same sampled commands plan
+    (:func:`wheelkin.sandbox.runs.planned_poses`).
+
+    Parameters
+    ----------
+    manoeuvres : dict of str to (vx, vy, omega), optional
+        Default :data:`MANOEUVRES`.
+    vehicles : dict of str to VehicleSpec, optional
+        Default :data:`VEHICLES`.
+
+    Returns
+    -------
+    dict
+        ``{manoeuvre title: {vehicle name: (spec, trajectory, goal pose)}}``, as
+        :func:`manoeuvre_animation` takes it.
+    """
+    runs: dict[str, dict[str, tuple]] = {}
+    for title, twist in (MANOEUVRES if manoeuvres is None else manoeuvres).items():
+        runs[title] = {}
+        goal = planned_poses(lambda t_, twist=twist: twist, duration, dt=dt, ramp=ramp)[-1]
+        for name, spec in (VEHICLES if vehicles is None else vehicles).items():
+            traj = drive_twist(spec, lambda t_, twist=twist: twist, duration, dt=dt, ramp=ramp,
+                               commands=one_model_commands, record_every=1)
+            runs[title][name] = (spec, traj, goal)
+    return runs
 
 
 def manoeuvre_animation(runs: dict, frames: int = 24, figsize: tuple[float, float] = (6.7, 4.0),

@@ -12,12 +12,18 @@ chapter checks it against the sandbox's closed-loop lap.
 The panel ``waypoints.lab`` runs a closed-loop lap with sliders for the cruising speed, the
 look-ahead distance, the heading gain of the turns in place, the encoder resolution and the
 track width the odometry assumes, and draws the maze, the plan, the true path and the estimate.
+
+The chapter's sections share three more helpers: :func:`draw_arena` (the maze and its
+waypoints on an axes), :func:`run_schedule` (an open-loop schedule played in the sandbox's
+maze) and :func:`spin_test_track` (the effective track width from a spin in place).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from functools import lru_cache
+from typing import NamedTuple
 
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
@@ -26,19 +32,31 @@ from matplotlib.axes import Axes
 from matplotlib.patches import Polygon
 from numpy.typing import ArrayLike
 
+from wheelkin import _validate as V
 from wheelkin import waypoints as wp
-from wheelkin.follower import FollowerController, KinematicSkidSteer, PathFollower
-from wheelkin.sandbox import LAB_ROBOT
+from wheelkin.follower import (
+    FollowerController,
+    KinematicSkidSteer,
+    PathFollower,
+    ScheduleController,
+)
+from wheelkin.sandbox import LAB_ROBOT, Robot, Trajectory, VehicleSpec, World
 from wheelkin.style import fixed_layout
 from wheelkin.widgets import Panel, register
 from wheelkin.widgets._blit import BlitList
 
 __all__ = [
     "EFFECTIVE_TRACK",
+    "LAB_SPEC",
+    "SANDBOX_DT",
     "SKID_FACTOR",
     "KinematicSkidSteer",
     "LabView",
+    "ScheduleRun",
+    "draw_arena",
     "lab_panel",
+    "run_schedule",
+    "spin_test_track",
     "surrogate_lap",
 ]
 
@@ -54,6 +72,120 @@ ENCODER_CHOICES = (("ideal", 0), ("4096 / rev", 4096), ("256 / rev", 256), ("64 
                    ("16 / rev", 16))
 TRACK_CHOICES = (("effective, 0.203 m (calibrated)", EFFECTIVE_TRACK),
                  ("geometric, 0.12 m (the lab's)", 2 * _B))
+#: s, the physics step of the chapter's sandbox runs (an eighth of the control period).
+SANDBOX_DT = 0.008
+#: The lab robot of the chapter's sandbox runs: the sandbox's, with the motor lag.
+LAB_SPEC = LAB_ROBOT.replace(motor_time_constant=MOTOR_TIME_CONSTANT)
+
+
+def draw_arena(ax: Axes, *, labels: bool = True) -> None:
+    """Draw the reconstructed maze (walls in black) and, with ``labels``, the waypoints
+    P0..P12 on ``ax``, with the chapter's limits, ticks and axis labels (x east, y north, m).
+
+    >>> from matplotlib.figure import Figure
+    >>> ax = Figure().add_subplot()
+    >>> draw_arena(ax)
+    >>> len(ax.lines) == len(wp.LAB_WALLS) + len(wp.LAB_WAYPOINTS)
+    True
+    >>> [float(x) for x in ax.get_xlim()]
+    [-2.1, 2.1]
+    """
+    if not isinstance(labels, bool):
+        raise ValueError(f"labels must be True or False, got {labels!r}")
+    for (x0, y0), (x1, y1) in wp.LAB_WALLS:
+        ax.plot([x0, x1], [y0, y1], color="k", lw=2.5, solid_capstyle="round")
+    if labels:
+        for k, (px, py) in enumerate(wp.LAB_WAYPOINTS):
+            ax.plot(px, py, "o", color="0.2", ms=4, zorder=5)
+            ax.annotate(f"P{k}", (px, py), xytext=(4, 4), textcoords="offset points",
+                        fontsize=8)
+    ax.set_xlim(-2.1, 2.1)
+    ax.set_ylim(-2.1, 2.1)
+    ax.set_xticks([-2, -1, 0, 1, 2])
+    ax.set_yticks([-2, -1, 0, 1, 2])
+    ax.set_aspect("equal")
+    ax.set_xlabel("x, east (m)")
+    ax.set_ylabel("y, north (m)")
+
+
+class ScheduleRun(NamedTuple):
+    """What :func:`run_schedule` returns."""
+
+    #: The recorded run.
+    trajectory: Trajectory
+    #: The controller that played the schedule (its switch times, its log).
+    controller: ScheduleController
+    #: The robot, as the run left it.
+    robot: Robot
+
+
+def run_schedule(spec: VehicleSpec, commands: Sequence[wp.WheelCommand], *,
+                 switch: str = "time", walls: Sequence = wp.LAB_WALLS,
+                 dt: float = SANDBOX_DT, period: float = PERIOD,
+                 extra: float = 1.0) -> ScheduleRun:
+    """Play a wheel schedule open loop in the sandbox's maze, from the plan's start (P0).
+
+    A :class:`wheelkin.follower.ScheduleController` sets the wheel rates once per control
+    ``period``; the world runs the schedule's duration plus 4 % and ``extra`` seconds.
+
+    Parameters
+    ----------
+    spec : VehicleSpec
+        The robot, e.g. :data:`LAB_SPEC`.
+    commands : sequence of WheelCommand
+        The schedule (:func:`wheelkin.waypoints.schedule`).
+    switch : {"time", "encoders"}
+        When the controller moves to the next command: by the clock, or when the wheels have
+        turned the command's angle.
+    walls : sequence of ((x0, y0), (x1, y1))
+        The world's walls (default: the maze).
+    dt, period, extra : float
+        Physics step, control period, time run beyond the schedule (s).
+
+    Returns
+    -------
+    ScheduleRun
+        ``(trajectory, controller, robot)``.
+    """
+    if not isinstance(spec, VehicleSpec):
+        raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
+    extra = V.nonnegative("extra", extra)
+    world = World(dt=dt, walls=walls)
+    robot = world.add(spec, pose=wp.plan_segments(wp.LAB_WAYPOINTS)[0].start)
+    controller = ScheduleController(robot, commands, switch=switch, period=period)
+    trajectory = world.run(wp.schedule_times(commands)[-1] * 1.04 + extra, controller)
+    assert isinstance(trajectory, Trajectory)  # one robot: one trajectory
+    return ScheduleRun(trajectory, controller, robot)
+
+
+def spin_test_track(dt: float = SANDBOX_DT, *, spec: VehicleSpec = LAB_SPEC,
+                    wheel_rate: float = wp.LAB_WHEEL_RATE, duration: float = 2.0) -> float:
+    r"""The effective track width :math:`W_\text{eff}` (m) of a skid steer, from a spin test.
+
+    The left wheels turn at ``-wheel_rate``, the right ones at ``+wheel_rate`` (rad/s) for
+    ``duration`` seconds in the sandbox; the steady yaw rate :math:`\omega` gives
+    :math:`W_\text{eff} = 2 r\,\dot\varphi / \omega`, the track width that the two-wheel
+    formulas need to predict it (the wheel radius :math:`r` is the first wheel's).
+
+    Examples
+    --------
+    >>> chi = spin_test_track() / (2 * wp.LAB_HALF_AXLE)  # the skid factor 1 + (a/b)^2
+    >>> round(chi, 4), round(1 + (wp.LAB_HALF_WHEELBASE / wp.LAB_HALF_AXLE) ** 2, 4)
+    (1.6944, 1.6944)
+    """
+    if not isinstance(spec, VehicleSpec):
+        raise ValueError(f"spec must be a VehicleSpec, got {type(spec).__name__}")
+    wheel_rate = V.positive("wheel_rate", wheel_rate)
+    world = World(dt=dt)
+    robot = world.add(spec)
+    robot.set_side_rates(-wheel_rate, wheel_rate)
+    run = world.run(V.positive("duration", duration))
+    assert isinstance(run, Trajectory)
+    yaw_rate = float(run.twist[-1, 2])  # steady state, rad/s
+    if not yaw_rate > 0:
+        raise ValueError(f"the spin test did not turn (yaw rate {yaw_rate!r} rad/s): give a "
+                         "longer duration")
+    return spec.wheels[0].wheel_radius * 2 * wheel_rate / yaw_rate
 
 
 def surrogate_lap(*, speed: float = 0.3, lookahead: float = 0.15, heading_gain: float = 4.0,
