@@ -35,7 +35,7 @@ from test_bad_input import BAD_VALUES, _finite_leaves
 
 from wheelkin.style import fixed_layout
 
-SANDBOX_MODULES = ("world", "sensors", "render", "vehicles", "contact", "car")
+SANDBOX_MODULES = ("world", "sensors", "render", "vehicles", "contact", "car", "runs")
 #: Methods that take no argument, or only what a caller never passes (pymunk's callbacks).
 NO_ARGUMENTS = {"remove", "close"}
 
@@ -104,6 +104,10 @@ def _good_values() -> dict:
         "title": "run", "figsize": (6.7, 4.2), "dpi": 100, "names": ["Radon"],
         "interval": 100.0, "limits": (-1.0, 1.0, -1.0, 1.0), "colors": 16, "dynamic": (),
         "func": lambda frame: [], "mu": 0.8,
+        # runs
+        "twist_at": lambda t: (0.2, 0.0, 0.5), "times": [0.0, 0.02, 0.05],
+        "twists": [(0.0, 0.0, 0.0), (0.2, 0.0, 0.5), (0.2, 0.0, 0.5)], "ramp": 0.1,
+        "commands": None, "wheels_of": None,
         # vehicles
         "name": "L", "position": (0.0, 0.05), "heading": 0.0, "kind": "fixed",
         "roller_angle": 0.785, "load_fraction": 0.5, "width": 0.01, "mass": 1.0,
@@ -409,6 +413,7 @@ ACCEPTED = {
     # An array of shape (2, 2, 2) is two walls, two frames, or two readings of two wheels.
     ("world.World", "walls"): {"wrong-shape"},
     ("render.animate", "walls"): {"wrong-shape"},
+    ("runs.drive_twist", "walls"): {"wrong-shape"},
     ("render.SandboxAnimation", "frames"): {"wrong-shape"},
     ("sensors.Encoder.angles", "counts"): {"wrong-shape"},
     ("sensors.Encoder", "steps_per_rev"): {"None"},  # an ideal encoder
