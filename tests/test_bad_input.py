@@ -251,7 +251,7 @@ FORMULA_MODULES = _registry.FORMULA_MODULES
 
 def _good_values() -> dict:
     """A valid value for each parameter name of the formula modules' public callables."""
-    from wheelkin import mecanum, rover, unified, waypoints
+    from wheelkin import mecanum, nonholonomic, rover, unified, waypoints
     from wheelkin.follower import KinematicSkidSteer, PathFollower
 
     segs = waypoints.plan_segments([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
@@ -313,6 +313,11 @@ def _good_values() -> dict:
         "wheel": unified.mecanum_wheels(mecanum.EXAMPLE_GEOMETRY)[0], "caster": True,
         "casters": True, "caster_offset": 0.05, "steering": None,
         "_rover_geometry": rover.OSR_GEOMETRY, "_mecanum_geometry": mecanum.EXAMPLE_GEOMETRY,
+        # nonholonomic
+        "configuration": (0.1, 0.2, 0.3), "f1": nonholonomic.unicycle_drive,
+        "f2": nonholonomic.unicycle_turn, "field": nonholonomic.unicycle_drive,
+        "fields": [nonholonomic.unicycle_drive, nonholonomic.unicycle_turn],
+        "epsilon": 0.1, "duration": 0.5, "max_curvature": 1.35,
     }
 
 
@@ -430,6 +435,10 @@ OVERRIDES = {
                                     "steps_per_mm": 8.0},
     "unified.skid_steer_wheels": {"half_track": 0.06, "half_wheelbase": 0.05},
     "unified.diff_drive_wheels": {"track_width": 0.3, "wheel_radius": 0.05},
+    "nonholonomic.car_constraints": {"configuration": (0.1, 0.2, 0.3, 0.2)},
+    "nonholonomic.car_fields": {"configuration": (0.1, 0.2, 0.3, 0.2)},
+    "nonholonomic.diff_drive_constraints": {"configuration": (0.1, 0.2, 0.3, 1.0, 2.0)},
+    "nonholonomic.pfaffian_matrix": {"pose": (0.1, 0.2, 0.3)},
 }
 
 
@@ -451,6 +460,8 @@ def _resolve(qualname: str, kwargs: dict) -> dict:
         kwargs["driven_wheels"] = (DrivenWheel("L", (0.0, 0.1)), DrivenWheel("R", (0.0, -0.1)))
     if qualname == "unified.sliding_row":
         kwargs["wheel"] = unified.diff_drive_wheels(0.3, 0.05)[0]
+    if qualname == "nonholonomic.pfaffian_matrix":
+        kwargs["wheels"] = unified.diff_drive_wheels(0.3, 0.05)
     del mecanum, odometry
     return kwargs
 

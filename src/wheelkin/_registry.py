@@ -24,7 +24,7 @@ __all__ = ["FORMULA_MODULES", "LAYERS", "SUPPORT_MODULES", "TYPED_MODULES",
 #: The public formula modules (numpy only), in the order the book meets them.
 FORMULA_MODULES: tuple[str, ...] = (
     "units", "frames", "sources", "rover", "mecanum", "diffdrive", "odometry",
-    "odometry_uncertainty", "waypoints", "follower", "unified", "carlike",
+    "odometry_uncertainty", "waypoints", "follower", "unified", "carlike", "nonholonomic",
 )
 
 #: The private modules the formula modules are built on (numpy only, type-checked too).
