@@ -18,11 +18,11 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from wheelkin import frames, sources, units
+from wheelkin import frames, nonholonomic, sources, unified, units
 from wheelkin.exercises import Case, Exercise
 
 __all__ = ["encoder_steps_to_metres", "firmware_pose", "heading_error", "icr_of",
-           "mecanum_twist", "rover_radius"]
+           "mecanum_twist", "rover_radius", "side_slip_row"]
 
 
 # ------------------------------------------------------------------ 1. rover turning radius
@@ -233,5 +233,59 @@ Exercise(
                         "subtract."),
         (_absolute, "the error is signed: odometry ahead of the truth (to the left) is "
                     "positive, behind is negative."),
+    ],
+)
+
+
+# ------------------------------------------------------------------ 7. a no-side-slip row
+
+def side_slip_row(theta: float, x: float, y: float, psi: float) -> NDArray[np.float64]:
+    """The Pfaffian row (coefficients of x_dot, y_dot, theta_dot) of the no-side-slip
+    constraint of a wheel at (x, y) in the body frame (m) rolling along psi (rad), on a body
+    with heading theta (rad)."""
+    wheel = unified.WheelConstraint("wheel", (x, y), psi)
+    return nonholonomic.pfaffian_matrix([0.0, 0.0, theta], [wheel])[0]
+
+
+def _body_frame_row(theta, x, y, psi):
+    return np.array([-math.sin(psi), math.cos(psi), x * math.cos(psi) + y * math.sin(psi)])
+
+
+def _rolling_row(theta, x, y, psi):
+    return np.array([math.cos(theta + psi), math.sin(theta + psi),
+                     x * math.sin(psi) - y * math.cos(psi)])
+
+
+def _lever_sign(theta, x, y, psi):
+    return np.array([-math.sin(theta + psi), math.cos(theta + psi),
+                     -(x * math.cos(psi) + y * math.sin(psi))])
+
+
+def _lever_in_world(theta, x, y, psi):
+    return np.array([-math.sin(theta + psi), math.cos(theta + psi),
+                     x * math.cos(theta + psi) + y * math.sin(theta + psi)])
+
+
+Exercise(
+    "conventions.side_slip_row",
+    "The row A_i(q) of the no-side-slip constraint A_i(q) q_dot = 0, coefficients of "
+    "(x_dot, y_dot, theta_dot), of a wheel at (x, y) in the body frame (m) rolling along psi "
+    "(rad from body +x), on a body with heading theta (rad).",
+    side_slip_row,
+    [Case((0.3, 0.2, 0.1, 0.5)), Case((-1.2, 0.33, 0.0, 0.3)), Case((2.0, 0.0, -0.15, 0.0)),
+     Case((0.7, -0.2, 0.15, -0.4))],
+    wheel_names=("x_dot", "y_dot", "theta_dot"),
+    mistakes=[
+        (_body_frame_row, "that is the row in the body frame, for (v_x, v_y, omega). In "
+                          "world rates the axle direction turns with the body: its first "
+                          "two entries are -sin(theta + psi) and cos(theta + psi)."),
+        (_rolling_row, "that is the rolling direction's row (e_i). No side slip is the "
+                       "velocity along the axle, n_i = (-sin psi, cos psi) in the body."),
+        (_lever_sign, "the turning term has the wrong sign: the contact point moves at "
+                      "v + omega x p = (v_x - omega y, v_y + omega x), and n_i . (omega x p) "
+                      "= omega (x cos psi + y sin psi)."),
+        (_lever_in_world, "the turning term does not depend on the heading: omega x p is "
+                          "taken in the body frame, where p and n_i are fixed, so it is "
+                          "x cos psi + y sin psi."),
     ],
 )
