@@ -37,7 +37,7 @@ __all__ = ["Panel", "all_panels", "register", "slider_values"]
 
 _FACTORIES: dict[str, Callable[[], Panel]] = {}
 CHAPTER_MODULES = ("conventions", "sandbox", "rover", "mecanum", "diffdrive", "odometry",
-                   "waypoints", "unified", "carlike")
+                   "waypoints", "unified", "carlike", "controllability")
 
 
 class Panel:
