@@ -32,7 +32,7 @@ try:  # IPython comes with the notebook extra; only show() needs it
 except ImportError:  # pragma: no cover - the plot extra alone
     HTML = Any
 
-__all__ = ["MAX_BYTES", "show", "to_html"]
+__all__ = ["MAX_BYTES", "palette_png", "show", "to_html"]
 
 #: Budget for one animation's HTML (bytes). A page must stay under 3 MB in all.
 MAX_BYTES = 2_000_000
@@ -56,6 +56,24 @@ def _palette_frame(match: re.Match, colors: int, min_font_pt: float | None = Non
     ``wheelkin:min_font_pt`` text chunk), as every figure of the book does.
     """
     import base64
+
+    data = base64.b64decode(match.group(2).replace("\\\n", ""))
+    png = palette_png(data, colors, min_font_pt=min_font_pt, dpi=dpi)
+    return match.group(1) + base64.b64encode(png).decode("ascii") + match.group(3)
+
+
+def palette_png(data: bytes, colors: int = 256, *, min_font_pt: float | None = None,
+                dpi: float | None = None, fast: bool = False) -> bytes:
+    """A PNG re-encoded with an adaptive palette of ``colors`` colours (2..256, no dithering).
+
+    Line drawings lose nothing visible and shrink about threefold. ``fast`` picks the palette
+    by Pillow's fast octree (about three times faster than the default median cut, and no
+    larger), for images made by the hundred. The PNG keeps its dpi (its
+    pHYs chunk; ``dpi`` when it has none) and, when given, records the smallest font size drawn
+    in it (a ``wheelkin:min_font_pt`` text chunk), as every figure of the book does. Used for
+    animation frames and for the precomputed views of the live panels
+    (:mod:`wheelkin.widgets.precomputed`).
+    """
     import io
 
     from PIL import Image
@@ -63,17 +81,17 @@ def _palette_frame(match: re.Match, colors: int, min_font_pt: float | None = Non
 
     if not 2 <= colors <= 256:
         raise ValueError(f"colors must be in [2, 256], got {colors}")
-    data = base64.b64decode(match.group(2).replace("\\\n", ""))
     image = Image.open(io.BytesIO(data)).convert("RGB")
-    dpi = Image.open(io.BytesIO(data)).info.get("dpi") or ((dpi, dpi) if dpi else None)
-    quantised = image.quantize(colors=colors, method=Image.Quantize.MEDIANCUT, dither=0)
+    found = Image.open(io.BytesIO(data)).info.get("dpi") or ((dpi, dpi) if dpi else None)
+    method = Image.Quantize.FASTOCTREE if fast else Image.Quantize.MEDIANCUT
+    quantised = image.quantize(colors=colors, method=method, dither=0)
     info = PngInfo()
     if min_font_pt is not None:
         info.add_text("wheelkin:min_font_pt", f"{min_font_pt:g}")
     buf = io.BytesIO()
-    extra = {"dpi": tuple(round(d) for d in dpi)} if dpi else {}
+    extra = {"dpi": tuple(round(d) for d in found)} if found else {}
     quantised.save(buf, format="png", optimize=True, pnginfo=info, **extra)
-    return match.group(1) + base64.b64encode(buf.getvalue()).decode("ascii") + match.group(3)
+    return buf.getvalue()
 
 
 def stable_id(name: str) -> str:
