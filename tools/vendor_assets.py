@@ -12,6 +12,10 @@ Without npm (or when ``npm ci`` fails) the script says so in one line and leaves
 the CDN defaults of Sphinx and myst-nb, so the build still passes ``-W``. Under CI
 (``CI=true``) a missing npm is an error: CI proves that the site works offline.
 
+Thebe (pinned too) is for the live pages of ``make serve-live`` only: its webpack bundle goes
+into ``_vendor_live/thebe/`` (git-ignored), which ``tools/serve_live.py`` serves beside the site,
+so that the static site does not carry 3 MB of scripts that no page of it loads.
+
 Run by ``make book``; it does nothing when ``_vendor/`` is already up to date.
 """
 
@@ -27,6 +31,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 VENDOR = ROOT / "_vendor"
+VENDOR_LIVE = ROOT / "_vendor_live"
 NODE_MODULES = ROOT / "node_modules"
 STAMP_NAME = ".stamp"
 
@@ -47,6 +52,15 @@ COPIES: tuple[tuple[str, str], ...] = (
     ("@jupyter-widgets/html-manager/dist/embed-amd.js", "embed-amd.js"),
 )
 
+#: Thebe's bundle for the live pages, (source under node_modules/, destination under
+#: _vendor_live/): index.js, the chunks it loads by name and its stylesheet, without source maps
+#: and type declarations. The bundle carries CodeMirror and the ipywidgets 8 manager; its
+#: require.js (fetched from a CDN by name) is served from the site's own copy (book/_live/live.js).
+LIVE_COPIES: tuple[tuple[str, str], ...] = (("thebe/lib", "thebe"),)
+_LIVE_SKIP = ("*.map", "types")
+#: Files whose presence means "_vendor_live/ is usable" (read by tools/serve_live.py).
+LIVE_REQUIRED: tuple[str, ...] = ("thebe/index.js", "thebe/thebe.css")
+
 #: Files whose presence means "_vendor/ is usable" (read by tools/offline_assets.py).
 REQUIRED: tuple[str, ...] = ("mathjax/tex-chtml.js", "require.js", "embed-amd.js")
 
@@ -58,13 +72,18 @@ def vendor_complete(vendor: Path = VENDOR) -> bool:
     return (vendor / STAMP_NAME).is_file() and all((vendor / f).is_file() for f in REQUIRED)
 
 
+def live_complete(vendor: Path = VENDOR_LIVE) -> bool:
+    """True when Thebe's bundle is in ``vendor`` (a complete earlier run)."""
+    return (vendor / STAMP_NAME).is_file() and all((vendor / f).is_file() for f in LIVE_REQUIRED)
+
+
 def _fingerprint() -> str:
     """Changes whenever the pinned packages or the list of copied files change."""
     digest = hashlib.sha256()
     for name in ("package.json", "package-lock.json"):
         path = ROOT / name
         digest.update(path.read_bytes() if path.exists() else b"-")
-    digest.update(json.dumps(COPIES).encode())
+    digest.update(json.dumps([COPIES, LIVE_COPIES, _LIVE_SKIP]).encode())
     return digest.hexdigest()
 
 
@@ -75,6 +94,7 @@ def _in_ci() -> bool:
 def _fallback(reason: str) -> int:
     """No usable npm: remove any partial _vendor/, say so once, and carry on (not in CI)."""
     shutil.rmtree(VENDOR, ignore_errors=True)
+    shutil.rmtree(VENDOR_LIVE, ignore_errors=True)
     if _in_ci():
         print(f"vendor_assets: {reason}; CI must build an offline site: install npm "
               "(apt-get install npm) and try again", file=sys.stderr)
@@ -95,7 +115,8 @@ def _copy(src: Path, dest: Path) -> None:
 def main() -> int:
     fingerprint = _fingerprint()
     stamp = VENDOR / STAMP_NAME
-    if vendor_complete() and stamp.read_text().strip() == fingerprint:
+    if (vendor_complete() and stamp.read_text().strip() == fingerprint and live_complete()
+            and (VENDOR_LIVE / STAMP_NAME).read_text().strip() == fingerprint):
         return 0  # up to date
     npm = shutil.which("npm")
     if npm is None:
@@ -106,7 +127,7 @@ def main() -> int:
     done = subprocess.run(command, cwd=ROOT, check=False)
     if done.returncode != 0:
         return _fallback(f"npm {command[1]} failed (exit {done.returncode})")
-    missing = [src for src, _ in COPIES if not (NODE_MODULES / src).exists()]
+    missing = [src for src, _ in COPIES + LIVE_COPIES if not (NODE_MODULES / src).exists()]
     if missing:
         print(f"vendor_assets: npm installed no {', '.join(missing)}: check package.json",
               file=sys.stderr)
@@ -120,6 +141,16 @@ def main() -> int:
     staging.rename(VENDOR)
     size = sum(p.stat().st_size for p in VENDOR.rglob("*") if p.is_file())
     print(f"vendor_assets: {len(COPIES)} assets, {size / 1e6:.1f} MB in _vendor/")
+    staging = NODE_MODULES / ".wheelkin-vendor-live-staging"
+    shutil.rmtree(staging, ignore_errors=True)
+    for src, dest in LIVE_COPIES:
+        shutil.copytree(NODE_MODULES / src, staging / dest,
+                        ignore=shutil.ignore_patterns(*_LIVE_SKIP))
+    (staging / STAMP_NAME).write_text(fingerprint + "\n")
+    shutil.rmtree(VENDOR_LIVE, ignore_errors=True)
+    staging.rename(VENDOR_LIVE)
+    size = sum(p.stat().st_size for p in VENDOR_LIVE.rglob("*") if p.is_file())
+    print(f"vendor_assets: Thebe for the live pages, {size / 1e6:.1f} MB in _vendor_live/")
     return 0
 
 
