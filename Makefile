@@ -11,6 +11,9 @@ PORT ?= 8000
 # `make lab`: JupyterLab's port on 127.0.0.1, and extra arguments (e.g. a fixed token).
 LAB_PORT ?= 8888
 LAB_ARGS ?=
+# `make serve-live`: the site's port and the Jupyter server's, on 127.0.0.1 (0: a free one).
+LIVE_PORT ?= 8001
+KERNEL_PORT ?= 8889
 # The notebooks of the book, in reading order, from _toc.yml (nested sections included).
 TOC_NOTEBOOKS = $(shell $(BIN)/python tools/book_pages.py --notebooks)
 # Guard for `make notebooks` (whole run, seconds); the budget is 5 minutes on 2 cores.
@@ -24,13 +27,14 @@ NB_ENV := PYTHONHASHSEED=0 MPLBACKEND=module://matplotlib_inline.backend_inline 
 
 LAYERS := lint unit nbval book browser kit pdf
 
-.PHONY: help setup book vendor test $(LAYERS) notebooks serve bench clean mutation lab student grade tex
+.PHONY: help setup book vendor test $(LAYERS) notebooks serve serve-live bench clean mutation lab student grade tex
 
 help:
 	@echo "make book       build the HTML book into _build/html (set-up included)"
 	@echo "make test       ruff, library tests + doctests, strict nbval, book build, browser tests"
 	@echo "make notebooks  re-execute every notebook in place, deterministically"
 	@echo "make serve      build, then serve _build/html on http://127.0.0.1:$(PORT)"
+	@echo "make serve-live the book with live pages (a local kernel) on http://127.0.0.1:$(LIVE_PORT)"
 	@echo "make lab        JupyterLab (pinned, with jupyterlab-myst) in notebooks/ on 127.0.0.1:$(LAB_PORT)"
 	@echo "make bench      run every benchmark (benchmarks/run_all.py)"
 	@echo "make mutation   mutate the formula modules; the unit tests must kill every mutant"
@@ -113,6 +117,13 @@ notebooks: $(STAMP)
 serve: book
 	@echo "serving http://127.0.0.1:$(PORT)/ (Ctrl-C to stop)"
 	$(BIN)/python -m http.server --bind 127.0.0.1 --directory _build/html $(PORT)
+
+# The book with live pages: "Make this page live" runs a page's cells and panels in a local
+# Jupyter server (tools/serve_live.py; jupyter_server comes with requirements-lab.txt). Builds
+# the book first when it is not built; Ctrl-C stops the site, the server and its kernels.
+serve-live: $(LAB_STAMP) vendor
+	@test -f _build/html/index.html || $(MAKE) --no-print-directory book
+	$(BIN)/python tools/serve_live.py --port $(LIVE_PORT) --kernel-port $(KERNEL_PORT)
 
 bench: book
 	$(BIN)/python benchmarks/run_all.py
