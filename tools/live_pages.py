@@ -33,7 +33,14 @@ from pathlib import Path
 
 from docutils import nodes
 
-ROOT = Path(__file__).resolve().parents[1]
+import wheelkin
+
+#: The library whose code draws the images (the venv's wheelkin, editable from the checkout).
+LIBRARY = Path(wheelkin.__file__).resolve().parent
+#: The checkout's build folder holds the cache, also for a build of a copy of the book (the
+#: student edition builds one, with these tools copied beside it).
+_CHECKOUT = LIBRARY.parents[1]
+ROOT = _CHECKOUT if (_CHECKOUT / "_config.yml").is_file() else Path(__file__).resolve().parents[1]
 CACHE = ROOT / "_build" / ".precomputed"
 STATIC_DIR = "precomputed"
 JS_FILE, CSS_FILE = "precomputed.js", "precomputed.css"
@@ -173,8 +180,8 @@ def fingerprint() -> str:
     import PIL
 
     digest = hashlib.sha256()
-    for path in sorted((ROOT / "src" / "wheelkin").rglob("*.py")):
-        digest.update(str(path.relative_to(ROOT)).encode())
+    for path in sorted(LIBRARY.rglob("*.py")):
+        digest.update(str(path.relative_to(LIBRARY)).encode())
         digest.update(path.read_bytes())
     digest.update(f"{matplotlib.__version__} {PIL.__version__} {sys.version_info[:2]}".encode())
     return digest.hexdigest()
