@@ -6,8 +6,9 @@
  * pages of notebooks; the static site never loads it. It adds one control, "Make this page
  * live". Its click loads Thebe (vendored), starts a kernel for the page's notebook in the
  * notebook's folder, turns every code cell into an editor with a run button (Shift-Enter runs
- * it too), runs the page's set-up cell (its first code cell) and every live panel's cell, and
- * shows each panel where its precomputed view was. A cell's new output replaces its stored
+ * it too), runs the page's set-up cell (its first code cell) and every live panel's cell (a
+ * panel that needs more gets the cells above it run first), and shows each panel where its
+ * precomputed view was. A cell's new output replaces its stored
  * one. Nothing is loaded from outside the site and the local server: Thebe fetches require.js
  * from a CDN by a fixed URL, and that one request is answered with the site's own copy.
  */
@@ -165,13 +166,25 @@
       var byId = placeOutputs(cells);
       wrapExecute(found.notebook, byId);
       setStatus(bar, "Kernel ready: setting up the page and its live panels…", "setting-up");
-      var first = found.notebook.cells[0];
-      var panels = found.notebook.cells.filter(function (c) {
-        return byId[c.id] && byId[c.id].view;
-      });
-      var order = [first].concat(panels.filter(function (c) { return c !== first; }));
-      for (var k = 0; k < order.length; k++) {
-        await order[k].execute(order[k].source);
+      var all = found.notebook.cells;
+      var panels = all.filter(function (c) { return byId[c.id] && byId[c.id].view; });
+      var ran = {};
+      async function run(cell) {
+        ran[cell.id] = true;
+        var result = await cell.execute(cell.source);
+        return !(result && result.error && result.error.length);
+      }
+      // The set-up cell (imports and style), then each panel. A panel that needs a name from
+      // a later cell than the set-up (a NameError) gets every cell above it run in order
+      // first, as the notebook runs them, and runs again.
+      if (all.length) { await run(all[0]); }
+      for (var k = 0; k < panels.length; k++) {
+        if (!(await run(panels[k]))) {
+          for (var i = 0; i < all.indexOf(panels[k]); i++) {
+            if (!ran[all[i].id]) { await run(all[i]); }
+          }
+          await run(panels[k]);
+        }
       }
       for (var j = 0; j < panels.length; j++) {
         await waitForWidgets(byId[panels[j].id].output, 15000);
