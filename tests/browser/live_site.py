@@ -102,6 +102,8 @@ def serve_live(timeout: float = 120.0) -> Iterator[str]:
                 os.killpg(process.pid, signal.SIGKILL)
                 process.wait()
         reader.join(5)
+        if process.stdout is not None:
+            process.stdout.close()
         serve_live.output = "".join(lines)  # type: ignore[attr-defined]
         serve_live.returncode = process.returncode  # type: ignore[attr-defined]
 
@@ -148,7 +150,8 @@ PANEL_CONTROLS = r"""
             index: k, kind: c.matches('select') ? 'select'
                            : c.matches('input') ? 'checkbox' : 'slider',
             label: (c.closest('.widget-inline-hbox, .widget-hslider, .widget-dropdown,'
-                              + ' .widget-checkbox') || c).innerText.split('\n')[0].trim(),
+                              + ' .widget-checkbox') || c).innerText.replace(/\u200b/g, '')
+                   .trim().split('\n')[0],
             atMax: c.matches('.noUi-handle')
                    && c.getAttribute('aria-valuenow') === c.getAttribute('aria-valuemax')}))};
 })
@@ -193,6 +196,25 @@ def move_control(page, panel: int, control: dict, timeout_ms: int = 30_000) -> f
     return page.evaluate(f"""() => Promise.race([window.__wkChange,
         new Promise((_, reject) => setTimeout(() => reject(new Error('no new image')),
                                                {timeout_ms}))])""")
+
+
+def toggle_checkbox(page, panel: int, control: dict, settle_ms: int = 2_000) -> None:
+    """Click a live panel's check box; the panel must stay up, with no error output.
+
+    A check box may leave the figure as it was (the circle panel's "refuse instead of
+    scaling" changes nothing while the speed is within the vehicle's limit), so no new image is
+    required; the click must reach the kernel without an error.
+    """
+    out = page.locator(".wk-panel-cell").nth(panel).locator(".thebe-output").first
+    box = out.locator(".noUi-handle, .widget-dropdown select, .widget-checkbox input"
+                      ).nth(control["index"])
+    before = box.is_checked()
+    box.click()
+    page.wait_for_timeout(settle_ms)
+    assert box.is_checked() != before
+    errors = out.locator(".jp-RenderedText[data-mime-type='application/vnd.jupyter.stderr']")
+    assert errors.count() == 0, errors.all_inner_texts()
+    assert out.locator("img.widget-image").count() == 1
 
 
 def run_edited_cell(page, code: str, expect: str, timeout_ms: int = 60_000) -> str:
