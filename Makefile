@@ -123,7 +123,7 @@ serve: book
 # the book first when it is not built; Ctrl-C stops the site, the server and its kernels.
 serve-live: $(LAB_STAMP) vendor
 	@test -f _build/html/index.html || $(MAKE) --no-print-directory book
-	$(BIN)/python tools/serve_live.py --port $(LIVE_PORT) --kernel-port $(KERNEL_PORT)
+	@$(BIN)/python tools/serve_live.py --port $(LIVE_PORT) --kernel-port $(KERNEL_PORT)
 
 bench: book
 	$(BIN)/python benchmarks/run_all.py
