@@ -184,6 +184,6 @@ def render(name: str, positions: Sequence[Sequence[int]] | None = None,
             panel.redraw(**spec.values_at(index))
             yield index, palette_png(panel.image.value, 256,
                                      min_font_pt=style.min_font_pt(panel.figure) or smallest,
-                                     dpi=panel.dpi, fast=True)
+                                     dpi=panel.dpi)
     finally:
         panel.close()
