@@ -125,7 +125,8 @@ serve-live: $(LAB_STAMP) vendor
 	@test -f _build/html/index.html || $(MAKE) --no-print-directory book
 	@$(BIN)/python tools/serve_live.py --port $(LIVE_PORT) --kernel-port $(KERNEL_PORT)
 
-bench: book
+# benchmarks/live.py serves live pages: jupyter_server comes with the lab stack.
+bench: book $(LAB_STAMP)
 	$(BIN)/python benchmarks/run_all.py
 
 # Meaningful mutants of the formula modules, one at a time in a temporary copy (tools/mutation.py).
