@@ -101,6 +101,8 @@ GRIDS: dict[str, Grid] = {grid.panel: grid for grid in (
     Grid("carlike.steering", (("delta_deg", _span(-24.0, 24.0, 3.0)),
                               ("geometry", ("ackermann", "linkage", "parallel")))),
     Grid("carlike.rover", (("delta_deg", _span(-45.0, 45.0, 2.5)),)),
+    Grid("controllability.manoeuvre", (("epsilon", _span(0.05, 0.5, 0.05)),
+                                       ("vehicle", ("car", "differential drive")))),
     Grid("carlike.pure_pursuit", (("bearing_deg", _span(-60.0, 60.0, 10.0)),
                                   ("lookahead", (0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.5)))),
 )}
