@@ -15,7 +15,7 @@ LAB_ARGS ?=
 LIVE_PORT ?= 8001
 KERNEL_PORT ?= 8889
 # The notebooks of the book, in reading order, from _toc.yml (nested sections included).
-TOC_NOTEBOOKS = $(shell $(BIN)/python tools/book_pages.py --notebooks)
+TOC_NOTEBOOKS = $(shell $(BIN)/python -m tools.book_pages --notebooks)
 # Guard for `make notebooks` (whole run, seconds); the budget is 5 minutes on 2 cores.
 NOTEBOOKS_TIMEOUT ?= 900
 # Every test run: no pytest cache, the summary of skips/failures at the end.
@@ -68,7 +68,7 @@ lab: $(LAB_STAMP)
 
 # JavaScript for the offline site (MathJax, require.js, widget manager) from package.json.
 vendor: $(STAMP)
-	$(BIN)/python tools/vendor_assets.py
+	$(BIN)/python -m tools.vendor_assets
 
 book: vendor
 	rm -rf _build/html _build/.doctrees _build/jupyter_execute
@@ -82,7 +82,7 @@ unit: $(STAMP)
 	$(PYTEST) -n 2 tests src/wheelkin --ignore=tests/browser
 
 nbval: $(STAMP)
-	$(NB_ENV) PYTHONPATH=tools $(PYTEST) -p nbval_jupyter_history \
+	$(NB_ENV) $(PYTEST) -p tools.nbval_jupyter_history \
 	  --nbval $(TOC_NOTEBOOKS) -n 2 --dist loadfile --nbval-current-env \
 	  --nbval-sanitize-with tools/nbval_sanitize.cfg --nbval-cell-timeout 300 \
 	  -o addopts="-ra" -o testpaths=notebooks
@@ -112,7 +112,7 @@ test: $(STAMP)
 	test $${#failed[@]} -eq 0
 
 notebooks: $(STAMP)
-	timeout $(NOTEBOOKS_TIMEOUT) $(BIN)/python tools/execute_notebooks.py $(TOC_NOTEBOOKS)
+	timeout $(NOTEBOOKS_TIMEOUT) $(BIN)/python -m tools.execute_notebooks $(TOC_NOTEBOOKS)
 
 serve: book
 	@echo "serving http://127.0.0.1:$(PORT)/ (Ctrl-C to stop)"
@@ -123,25 +123,25 @@ serve: book
 # the book first when it is not built; Ctrl-C stops the site, the server and its kernels.
 serve-live: $(LAB_STAMP) vendor
 	@test -f _build/html/index.html || $(MAKE) --no-print-directory book
-	@$(BIN)/python tools/serve_live.py --port $(LIVE_PORT) --kernel-port $(KERNEL_PORT)
+	@$(BIN)/python -m tools.serve_live --port $(LIVE_PORT) --kernel-port $(KERNEL_PORT)
 
 # benchmarks/live.py serves live pages: jupyter_server comes with the lab stack.
 bench: book $(LAB_STAMP)
-	$(BIN)/python benchmarks/run_all.py
+	$(BIN)/python -m benchmarks.run_all
 
 # Meaningful mutants of the formula modules, one at a time in a temporary copy (tools/mutation.py).
 mutation: $(STAMP)
-	$(BIN)/python tools/mutation.py
+	$(BIN)/python -m tools.mutation
 
 # The instructor's kit (tools/student_edition.py, tools/grade.py, tools/pdf_edition.py).
 student: vendor
-	$(BIN)/python tools/student_edition.py --out _build/student
+	$(BIN)/python -m tools.student_edition --out _build/student
 
 SUBMISSIONS ?=
 GRADE_TIMEOUT ?= 120
 grade: $(STAMP)
 	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>"; exit 2; }
-	$(BIN)/python tools/grade.py "$(SUBMISSIONS)" --out _build/grades --timeout $(GRADE_TIMEOUT)
+	$(BIN)/python -m tools.grade "$(SUBMISSIONS)" --out _build/grades --timeout $(GRADE_TIMEOUT)
 
 # The kit layer: the grader on tests/kit/submissions, the student edition built and executed,
 # stray globals before every exercise stub (tests/kit/conftest.py collects it only here).
@@ -163,7 +163,7 @@ tex:
 
 # The printed edition, then its checks (the pdf layer of make test).
 pdf: tex $(STAMP)
-	$(BIN)/python tools/pdf_edition.py --out _build/pdf
+	$(BIN)/python -m tools.pdf_edition --out _build/pdf
 	$(PYTEST) tests/kit/test_pdf.py -o addopts="-ra"
 
 clean:

@@ -8,7 +8,7 @@ centre travel (1,000 updates), with random wheel errors of variance k |Δs| per 
 (the exact arc update, vectorised over runs and updates). Each measurement is repeated
 ``--repeat`` times; the best and the median are reported, with the load average.
 
-Usage: ``python benchmarks/montecarlo.py [--repeat 7] [--runs 1000] [--no-write]``; writes the
+Usage: ``python -m benchmarks.montecarlo [--repeat 7] [--runs 1000] [--no-write]``; writes the
 "Monte Carlo odometry" section of benchmarks/RESULTS.md (between its markers).
 """
 
@@ -21,14 +21,11 @@ import os
 import statistics
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
+from tools.results import cpu, markers, write_section
 from wheelkin import odometry as odo
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _results import cpu, markers, write_section
 
 BEGIN, END = markers("montecarlo")
 BUDGET_S = 2.0
@@ -80,7 +77,7 @@ def report(result: dict, load: tuple) -> str:
         f"Machine: {cpu()}, numpy {np.__version__}. Date: {_dt.date.today().isoformat()}. "
         f"Load average (1, 5, 15 min) before: {', '.join(f'{x:.1f}' for x in load[0])}; "
         f"after: {', '.join(f'{x:.1f}' for x in load[1])}. "
-        "Produced by `python benchmarks/montecarlo.py`.",
+        "Produced by `python -m benchmarks.montecarlo`.",
         "",
         f"`odometry.monte_carlo_poses`: {result['runs']} runs of a "
         f"{result['distance']:.2f} m path (1 m straight, a quarter circle of radius 0.5 m, "

@@ -15,7 +15,7 @@ the best sweep's median (the least disturbed one; the verdict uses it, and says 
 median over everything meets the budget as well). The load average is written down with
 the figures.
 
-Usage: ``python benchmarks/panels.py [--repeat 5] [--points 9] [--only NAME ...]
+Usage: ``python -m benchmarks.panels [--repeat 5] [--points 9] [--only NAME ...]
 [--no-write]``; writes the "Slider response" section of benchmarks/RESULTS.md (between its
 markers, other sections kept).
 """
@@ -32,12 +32,11 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 
+from tools.results import cpu, markers, write_section
 from wheelkin.widgets import all_panels, slider_values
 
 BUDGET_MS = 50.0
 RESULTS = Path(__file__).with_name("RESULTS.md")
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _results import cpu, markers, write_section  # noqa: E402
 
 BEGIN, END = markers("panels")
 
@@ -122,7 +121,7 @@ def report(result: dict) -> str:
         f"Machine: {machine()}. Date: {_dt.date.today().isoformat()}. "
         f"Load average (1, 5, 15 min) before: {load}; after: {load_after} (other jobs shared "
         "the cores, so the figures over all sweeps are pessimistic). "
-        "Produced by `python benchmarks/panels.py`.",
+        "Produced by `python -m benchmarks.panels`.",
         "",
         f"Every control of every registered panel swept over its range ({result['points']} "
         "values of a numeric slider, every option of a choice, then back to its default; the "

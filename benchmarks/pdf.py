@@ -1,6 +1,6 @@
 """The printed edition: how long ``tools/pdf_edition.py`` takes and how many pages it makes.
 
-Usage: ``python benchmarks/pdf.py [--no-write]`` (needs Debian's TeX: ``make tex``). Builds
+Usage: ``python -m benchmarks.pdf [--no-write]`` (needs Debian's TeX: ``make tex``). Builds
 ``_build/pdf/wheelkin.pdf`` from the stored notebooks (transformed copy, then XeLaTeX) and
 writes the "Printed edition" section of benchmarks/RESULTS.md (between its markers, other
 sections kept).
@@ -13,15 +13,14 @@ import sys
 import time
 from pathlib import Path
 
+from tools.results import RESULTS, cpu, markers, write_section
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tools"))
-from _results import RESULTS, cpu, markers, write_section  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:
-    import pdf_edition
+    from tools import pdf_edition
 
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--no-write", action="store_true", help="print, do not write RESULTS.md")

@@ -19,7 +19,7 @@ For every page (``tools/book_pages.py``, nested ``sections:`` included), over a 
 - **first visit**: bytes of every response of a first visit with an empty cache (the page and
   every asset it loads), from the browser's network events.
 
-Run: ``.venv/bin/python benchmarks/reading.py [--site DIR] [--section reading]`` writes the
+Run: ``.venv/bin/python -m benchmarks.reading [--site DIR] [--section reading]`` writes the
 table as section ``reading`` of RESULTS.md (``--section reading-before`` for the first
 edition's site). ``--no-write`` only prints it.
 """
@@ -35,13 +35,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from urllib.parse import urlsplit
 
+from tools.book_pages import toc_files
+from tools.png_text import image_bytes, text_px
+from tools.results import cpu, markers, write_section
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-sys.path.insert(0, str(ROOT / "tools"))
-sys.path.insert(0, str(HERE))
-from _results import cpu, markers, write_section  # noqa: E402
-from book_pages import toc_files  # noqa: E402
-from png_text import image_bytes, text_px  # noqa: E402
 
 CHROMIUM = "/usr/bin/chromium"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",

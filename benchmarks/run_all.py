@@ -1,7 +1,7 @@
 #!/usr/bin/env python
 """Run every benchmark: each benchmarks/*.py that defines a top-level ``main()``.
 
-Usage: ``python benchmarks/run_all.py [NAME ...]`` (``make bench``); with names (file stems,
+Usage: ``python -m benchmarks.run_all [NAME ...]`` (``make bench``); with names (file stems,
 e.g. ``sandbox``), only those. Each benchmark runs in its own process, with its default
 options (``main()`` called with no arguments), so one cannot disturb another's timings; each
 writes its own section of benchmarks/RESULTS.md. Exit status 1 if any benchmark failed.

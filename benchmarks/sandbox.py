@@ -25,7 +25,7 @@ checked against the sandbox's vehicles), and the exact path is the closed-form a
 constant twist, or scipy's DOP853 (``solve_ivp``, rtol 1e-13, atol 1e-14) for a time-varying
 one, whose own error is estimated against a run at rtol 1e-11, atol 1e-12 and reported.
 
-Usage: ``python benchmarks/sandbox.py [--repeat 5] [--seconds 10] [--no-write]``; writes the
+Usage: ``python -m benchmarks.sandbox [--repeat 5] [--seconds 10] [--no-write]``; writes the
 "Sandbox" section of benchmarks/RESULTS.md (between its markers, other sections kept).
 """
 
@@ -44,6 +44,7 @@ import numpy as np
 import pymunk
 from scipy.integrate import solve_ivp
 
+from tools.results import cpu, markers, write_section
 from wheelkin.sandbox import (
     LAB_ROBOT,
     MECANUM_ROBOT,
@@ -55,8 +56,6 @@ from wheelkin.sandbox import (
 
 DT = 1 / 240
 RESULTS = Path(__file__).with_name("RESULTS.md")
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _results import cpu, markers, write_section  # noqa: E402
 
 BEGIN, END = markers("sandbox")
 
@@ -470,7 +469,7 @@ def report(result: dict) -> str:
         f"Load average (1, 5, 15 min) before: "
         f"{', '.join(f'{x:.1f}' for x in result['load'][0])}; after: "
         f"{', '.join(f'{x:.1f}' for x in result['load'][1])} (other jobs shared the 2 cores, "
-        "so the medians are pessimistic). Produced by `python benchmarks/sandbox.py`.",
+        "so the medians are pessimistic). Produced by `python -m benchmarks.sandbox`.",
         "",
         "### Speed",
         "",

@@ -23,7 +23,7 @@ that is not in the build, makes the measurement void: it is listed, and the exit
 Every notebook's (``notebooks/**/*.ipynb``) size is checked against the same budget. A budget
 not met is a verdict in the table (the exit status stays 0, as for the other benchmarks).
 
-Usage: ``python benchmarks/sizes.py [--root DIR] [--no-write]``; ``--root`` measures another
+Usage: ``python -m benchmarks.sizes [--root DIR] [--no-write]``; ``--root`` measures another
 checkout's build (its ``_toc.yml``, ``_build/html`` and ``notebooks/``), e.g. a scratch copy.
 Writes the "Page and notebook sizes" section of benchmarks/RESULTS.md (between its markers,
 other sections kept).
@@ -43,10 +43,10 @@ from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
+from tools.results import markers, write_section
+
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = Path(__file__).with_name("RESULTS.md")
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _results import markers, write_section  # noqa: E402
 
 BEGIN, END = markers("sizes")
 
@@ -235,7 +235,7 @@ def report(result: dict) -> str:
         f"{platform.python_version()}{builder}. Date: {_dt.date.today().isoformat()}. "
         f"Measured: `_build/html` as `make book` built it from {where}, and the notebook "
         "files. "
-        "Produced by `python benchmarks/sizes.py`. MB = 10^6 bytes.",
+        "Produced by `python -m benchmarks.sizes`. MB = 10^6 bytes.",
         "",
         "A page's weight is its HTML file (which embeds the animations' frames and every other "
         "`data:` URI) plus the images and media files it shows; the budget is checked against "

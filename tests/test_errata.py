@@ -12,15 +12,14 @@ the lists from the boxes.
 from __future__ import annotations
 
 import re
-import sys
 from collections import Counter
 from pathlib import Path
 
 import nbformat
 
+from tools.book_pages import NOTEBOOKS, notebook_id, notebooks
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import NOTEBOOKS, notebook_id, notebooks  # noqa: E402
 
 ERRATA_PAGE = ROOT / "book" / "errata.md"
 ERRATA_DIR = ROOT / "book" / "errata"
@@ -70,7 +69,7 @@ def test_every_erratum_box_has_exactly_one_index_line():
                if counts[label] == 0]
     repeated = [f"{label} ({counts[label]} lines)" for label in _labels() if counts[label] > 1]
     assert not missing, ("erratum boxes with no line in book/errata/<source>.md (run "
-                         "`.venv/bin/python tools/errata_index.py`): " + ", ".join(missing))
+                         "`.venv/bin/python -m tools.errata_index`): " + ", ".join(missing))
     assert not repeated, "errata listed more than once in the index: " + ", ".join(repeated)
 
 

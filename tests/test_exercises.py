@@ -16,16 +16,15 @@ from __future__ import annotations
 
 import ast
 import re
-import sys
 from pathlib import Path
 
 import matplotlib
 import nbformat
 import pytest
 
+from tools.book_pages import NON_CHAPTER_NOTEBOOKS, chapters, notebook_id, notebooks
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import NON_CHAPTER_NOTEBOOKS, chapters, notebook_id, notebooks  # noqa: E402
 
 MIN_EXERCISES = 3
 CHECK_CALL = re.compile(r"""\bcheck\(\s*["']([\w.]+)["']""")

@@ -116,11 +116,7 @@ def test_slip_panel_edge_is_the_steady_turns_friction_limit(omega, slips):
 
 def test_the_grader_judges_by_running_the_sandbox():
     """tools/grade.py replays the student's answers through the exercise's own check."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
-    import grade
+    from tools import grade
 
     exercise = get(NAME)
     cases = list(exercise.cases) + grade.hidden_cases(exercise)

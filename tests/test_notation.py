@@ -17,15 +17,14 @@ close variants; the detector itself is tested on sentences written for the purpo
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
+from tools.book_pages import NOTEBOOKS, notebook_id, notebooks
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import NOTEBOOKS, notebook_id, notebooks  # noqa: E402
 
 #: Words that put a sentence in a source's context (quoting or translating its convention).
 SOURCE_CONTEXT = re.compile(

@@ -2,22 +2,19 @@
 
 These read the committed files only (nothing is executed here: strict nbval re-runs every
 notebook in its own `make test` step). A failure names the notebook and the cell, and how to
-fix it, usually: re-run ``.venv/bin/python tools/execute_notebooks.py notebooks/NN_name.ipynb``.
+fix it, usually: re-run ``.venv/bin/python -m tools.execute_notebooks notebooks/NN_name.ipynb``.
 """
 
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import notebook_id, notebooks, toc_files, toc_notebooks  # noqa: E402
-from execute_notebooks import (  # noqa: E402
+from tools.book_pages import notebook_id, notebooks, toc_files, toc_notebooks
+from tools.execute_notebooks import (
     KERNELSPEC,
     TIMING_KEYS,
     WIDGET_VIEW,
@@ -26,11 +23,13 @@ from execute_notebooks import (  # noqa: E402
     problems,
 )
 
+ROOT = Path(__file__).resolve().parents[1]
+
 #: A notebook file's budget (its outputs included): one section page of the reader's edition.
 MAX_BYTES = 1_500_000
 NOTEBOOKS = notebooks()  # both layouts: notebooks/NN_name.ipynb, notebooks/NN_name/MM_x.ipynb
 IDS = [notebook_id(p) for p in NOTEBOOKS]
-FIX = "re-run `.venv/bin/python tools/execute_notebooks.py {path}`"
+FIX = "re-run `.venv/bin/python -m tools.execute_notebooks {path}`"
 
 #: Output text that must never be stored: absolute paths of this machine, memory addresses.
 LEAKS = {

@@ -128,7 +128,7 @@ def chapter_notebooks() -> list[Path]:
     return [p for p in notebooks() if chapter_of(p) not in NON_CHAPTER_NOTEBOOKS]
 
 
-if __name__ == "__main__":  # `python tools/book_pages.py [--notebooks]`: for the Makefile
+if __name__ == "__main__":  # `python -m tools.book_pages [--notebooks]`: for the Makefile
     import sys
 
     if "--notebooks" in sys.argv[1:]:

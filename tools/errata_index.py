@@ -7,7 +7,7 @@ thing once"). This rewrites the list of ``book/errata/<source>.md`` from those b
 order: one line ``- {ref}`<the box's title> <erratum-...>` `` per box. The file's heading and
 its one-paragraph introduction (everything before the list) are kept.
 
-Usage: ``python tools/errata_index.py`` (writes), ``--check`` (exit 1 if a file would change).
+Usage: ``python -m tools.errata_index`` (writes), ``--check`` (exit 1 if a file would change).
 """
 
 from __future__ import annotations
@@ -19,8 +19,7 @@ from pathlib import Path
 
 import nbformat
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from book_pages import ROOT, toc_notebooks
+from tools.book_pages import ROOT, toc_notebooks
 
 ERRATA_DIR = ROOT / "book" / "errata"
 LABEL = re.compile(r"^\((erratum-([a-z]+)-[\w-]+)\)=\s*$", re.MULTILINE)

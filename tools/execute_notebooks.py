@@ -3,10 +3,10 @@
 
 Usage::
 
-    python tools/execute_notebooks.py notebooks/*.ipynb        # execute, write in place
-    python tools/execute_notebooks.py --check notebooks/01_conventions.ipynb
+    python -m tools.execute_notebooks notebooks/*.ipynb        # execute, write in place
+    python -m tools.execute_notebooks --check notebooks/01_conventions.ipynb
                                       # execute, write nothing, fail if the file would change
-    python tools/execute_notebooks.py --normalise notebooks/*.ipynb
+    python -m tools.execute_notebooks --normalise notebooks/*.ipynb
                                       # no execution: only rewrite in canonical form
 
 Each notebook runs top to bottom in a fresh kernel of *this* Python environment, with its
@@ -53,8 +53,7 @@ from pathlib import Path
 
 import nbformat
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from book_pages import notebook_id
+from tools.book_pages import notebook_id
 
 #: Environment of the kernel (and of nbval's kernel: the Makefile exports the same values).
 DETERMINISTIC_ENV = {

@@ -3,7 +3,7 @@
 
 Usage::
 
-    python tools/grade.py SUBMISSIONS [--out DIR] [--timeout 120] [--jobs 2]
+    python -m tools.grade SUBMISSIONS [--out DIR] [--timeout 120] [--jobs 2]
     make grade SUBMISSIONS=folder            # the same, results in _build/grades/
 
 For each file of ``SUBMISSIONS`` (any file: one that is not a notebook gets a clear line):
@@ -62,13 +62,11 @@ from pathlib import Path
 import nbformat
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-sys.path.insert(0, str(ROOT / "src"))
-from execute_notebooks import DETERMINISTIC_ENV  # noqa: E402
+import wheelkin
+from tools.execute_notebooks import DETERMINISTIC_ENV
+from wheelkin.exercises import Case, Exercise, get
 
-import wheelkin  # noqa: E402
-from wheelkin.exercises import Case, Exercise, get  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
 
 #: Points for an exercise that passes (all or nothing: the check stops at the first problem).
 POINTS = 1.0

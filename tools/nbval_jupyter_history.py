@@ -7,7 +7,8 @@ under nbval but not in Jupyter, nbclient or the stored notebook. With the histor
 reproduces exactly what a reader's Jupyter shows. Nothing else changes (execution counts are
 not compared by nbval).
 
-Loaded with ``-p nbval_jupyter_history`` (tools/ on PYTHONPATH; see the Makefile).
+Loaded with ``-p tools.nbval_jupyter_history`` (``python -m pytest`` from the repository root;
+see the Makefile).
 """
 
 from __future__ import annotations

@@ -32,13 +32,11 @@ Loaded by ``_config.yml`` (``sphinx.local_extensions``). Four jobs:
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 from docutils import nodes
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from vendor_assets import vendor_complete
+from tools.vendor_assets import vendor_complete
 
 VENDOR_DIRNAME = "_vendor"
 

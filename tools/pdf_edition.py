@@ -3,7 +3,7 @@
 
 Usage::
 
-    python tools/pdf_edition.py [--out _build/pdf]     # or: make pdf  (make tex installs TeX)
+    python -m tools.pdf_edition [--out _build/pdf]     # or: make pdf  (make tex installs TeX)
 
 The book is copied into ``_build/pdf_src/`` and its notebooks transformed for paper:
 
@@ -41,14 +41,14 @@ from pathlib import Path
 import nbformat
 import yaml
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import toc_files  # noqa: E402
-from student_edition import (  # noqa: E402
+from tools.book_pages import toc_files
+from tools.student_edition import (
     copy_includes,
     remove_solution_sentences,
     student_notebook,
 )
+
+ROOT = Path(__file__).resolve().parents[1]
 
 #: The commands the build needs (``make tex`` installs them).
 NEEDED = ("xelatex", "latexmk", "xindy", "pdfinfo", "pdftotext")

@@ -4,7 +4,7 @@ edition built from them.
 
 Usage::
 
-    python tools/student_edition.py [--out _build/student] [--no-html] [-j 2]
+    python -m tools.student_edition [--out _build/student] [--no-html] [-j 2]
     make student
 
 For every notebook that ``_toc.yml`` lists (chapters and their sections, at any depth):
@@ -42,9 +42,9 @@ from pathlib import Path
 import nbformat
 import yaml
 
+from tools.book_pages import toc_files
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import toc_files  # noqa: E402
 
 #: Pages of the teacher's book that the student edition leaves out.
 INSTRUCTOR_PAGES = ("book/instructors",)
@@ -151,7 +151,10 @@ def execute_student(path: Path, name: str, cell_timeout: int = 300) -> dict:
     """
     import os
 
-    from execute_notebooks import (
+    from nbclient import NotebookClient
+    from nbclient.exceptions import CellExecutionError, CellTimeoutError
+
+    from tools.execute_notebooks import (
         DETERMINISTIC_ENV,
         NotebookFailure,
         _kernel_manager_class,
@@ -159,8 +162,6 @@ def execute_student(path: Path, name: str, cell_timeout: int = 300) -> dict:
         normalise,
         problems,
     )
-    from nbclient import NotebookClient
-    from nbclient.exceptions import CellExecutionError, CellTimeoutError
 
     os.environ.update(DETERMINISTIC_ENV)
     nb = nbformat.read(path, as_version=4)

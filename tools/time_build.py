@@ -1,7 +1,7 @@
 #!/usr/bin/env python
 """Time `make book`, `make notebooks` and `make test` on a fresh clone; record the figures.
 
-Usage: ``.venv/bin/python tools/time_build.py [--no-write]`` (about 10 minutes). Clones the
+Usage: ``.venv/bin/python -m tools.time_build [--no-write]`` (about 10 minutes). Clones the
 committed HEAD into a temporary folder and runs there, as a new user would:
 
 1. ``make book`` from nothing (creates .venv, installs, vendors the JavaScript, builds);
@@ -27,10 +27,10 @@ import tempfile
 import time
 from pathlib import Path
 
+from tools.results import markers, write_section
+
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "RESULTS.md"
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
-from _results import markers, write_section  # noqa: E402
 
 BEGIN, END = markers("build")
 
@@ -93,7 +93,7 @@ def report(rows, layers, commit: str, before: str, after: str) -> str:
         f"Machine: {platform.processor() or platform.machine()}, {os.cpu_count()} logical CPUs; "
         f"Python {platform.python_version()}. Date: {_dt.date.today().isoformat()}. Commit "
         f"{commit}, cloned fresh. Load average (1, 5, 15 min) before: {before}; after: {after} "
-        "(other jobs may share the cores). Produced by `python tools/time_build.py`.",
+        "(other jobs may share the cores). Produced by `python -m tools.time_build`.",
         "",
         "| command | wall time (s) | result |",
         "| --- | --- | --- |",

@@ -3,12 +3,11 @@
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 
+from tools.book_pages import NON_CHAPTER_NOTEBOOKS, toc_files  # noqa: F401
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import NON_CHAPTER_NOTEBOOKS, toc_files  # noqa: E402, F401
 
 #: The built book: _build/html, or the folder named by WHEELKIN_SITE (a build of one's own,
 #: e.g. `jupyter-book build . --path-output /tmp/x` then WHEELKIN_SITE=/tmp/x/_build/html).

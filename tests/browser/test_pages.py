@@ -16,9 +16,10 @@ from pathlib import Path
 from urllib.parse import unquote, urldefrag
 
 import pytest
-from book_pages import chapter_of
 from book_site import NON_CHAPTER_NOTEBOOKS, PAGES, ROOT, SITE
-from png_text import image_bytes, text_px
+
+from tools.book_pages import chapter_of
+from tools.png_text import image_bytes, text_px
 
 MAX_PAGE_BYTES = 3_000_000
 #: A reader's first visit of a page: the page and every script, style, font and image it loads.

@@ -17,7 +17,6 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
 
 
 def pytest_ignore_collect(collection_path, config):
@@ -41,7 +40,7 @@ def student_edition(tmp_path_factory):
         stray = json.loads((out / "stray_globals.json").read_text(encoding="utf-8"))
         return out, stray
     out = tmp_path_factory.mktemp("student") / "edition"
-    done = subprocess.run([sys.executable, str(ROOT / "tools" / "student_edition.py"),
+    done = subprocess.run([sys.executable, "-m", "tools.student_edition",
                            "--out", str(out), "-j", "2"], capture_output=True, text=True,
                           cwd=ROOT, timeout=3600)
     assert done.returncode == 0, (f"student_edition.py failed:\n{done.stdout[-3000:]}\n"

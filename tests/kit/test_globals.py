@@ -9,15 +9,14 @@ listed in the terminal summary, not failed.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
+from tools.student_edition import is_stray, toc_notebooks
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from student_edition import is_stray, toc_notebooks  # noqa: E402
 
 
 def _has_exercises(rel: Path) -> bool:

@@ -18,12 +18,12 @@ import nbformat
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-import grade  # noqa: E402
-from student_edition import toc_notebooks  # noqa: E402
+from tools import grade
+from tools.student_edition import toc_notebooks
+from wheelkin.exercises import Exercise, all_exercises, get
 
-from wheelkin.exercises import Exercise, all_exercises, get  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
+
 
 SUBMISSIONS = Path(__file__).resolve().parent / "submissions"
 EXERCISES = ["conventions.encoder_steps", "conventions.icr", "conventions.rover_radius"]
@@ -33,7 +33,7 @@ LIMIT_S = 20  # the endless loop's limit; the others take a few seconds
 @pytest.fixture(scope="module")
 def graded(tmp_path_factory):
     out = tmp_path_factory.mktemp("grades")
-    done = subprocess.run([sys.executable, str(ROOT / "tools" / "grade.py"), str(SUBMISSIONS),
+    done = subprocess.run([sys.executable, "-m", "tools.grade", str(SUBMISSIONS),
                            "--out", str(out), "--timeout", str(LIMIT_S), "-j", "2"],
                           capture_output=True, text=True, cwd=ROOT, timeout=600)
     print(done.stdout)  # seconds per submission, in the log

@@ -9,16 +9,15 @@ import json
 import re
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
+from tools import pdf_edition
+from tools.student_edition import toc_notebooks
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-import pdf_edition  # noqa: E402
-from student_edition import toc_notebooks  # noqa: E402
 
 PDF = ROOT / "_build" / "pdf" / "wheelkin.pdf"
 #: The book has about 40 section pages; far fewer pages means chapters went missing.

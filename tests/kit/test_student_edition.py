@@ -5,19 +5,18 @@ from __future__ import annotations
 
 import html
 import re
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from student_edition import (  # noqa: E402
+from tools.student_edition import (
     remove_solution_sentences,
     student_notebook,
     toc_notebooks,
 )
+
+ROOT = Path(__file__).resolve().parents[2]
 
 NOTEBOOKS = toc_notebooks()
 

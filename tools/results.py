@@ -1,7 +1,8 @@
 """What every benchmark shares: the machine's description and writing its RESULTS.md section.
 
-Each benchmark (and ``tools/time_build.py``) owns one section of ``benchmarks/RESULTS.md``,
+Each benchmark (and :mod:`tools.time_build`) owns one section of ``benchmarks/RESULTS.md``,
 delimited by ``<!-- BEGIN name -->`` / ``<!-- END name -->``, and replaces only that section.
+It lives in ``tools`` so that ``benchmarks`` depends on ``tools`` and never the reverse.
 """
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ import platform
 from pathlib import Path
 
 #: The file every benchmark writes its figures into.
-RESULTS = Path(__file__).with_name("RESULTS.md")
+RESULTS = Path(__file__).resolve().parents[1] / "benchmarks" / "RESULTS.md"
 
 
 def cpu() -> str:
