@@ -79,7 +79,7 @@ lint: $(STAMP)
 	$(BIN)/mypy
 
 unit: $(STAMP)
-	$(PYTEST) -n 2 tests src/wheelkin --ignore=tests/browser
+	$(PYTEST) -n 2 tests src/wheelkin --ignore=tests/browser --ignore=tests/pdf
 
 nbval: $(STAMP)
 	$(NB_ENV) $(PYTEST) -p tools.nbval_jupyter_history \
@@ -87,9 +87,9 @@ nbval: $(STAMP)
 	  --nbval-sanitize-with tools/nbval_sanitize.cfg --nbval-cell-timeout 300 \
 	  -o addopts="-ra" -o testpaths=notebooks
 
-# The browser layer also starts `make lab`'s JupyterLab once (tests/test_lab.py).
+# The browser layer also starts `make lab`'s JupyterLab once (tests/browser/test_lab.py).
 browser: $(STAMP) $(LAB_STAMP)
-	$(PYTEST) tests/browser tests/test_lab.py -o addopts="-ra" --timeout 900
+	$(PYTEST) tests/browser -o addopts="-ra" --timeout 900
 
 # Every layer runs even when an earlier one failed; the summary names the failed ones.
 test: $(STAMP)
@@ -146,7 +146,7 @@ grade: $(STAMP)
 # The kit layer: the grader on tests/kit/submissions, the student edition built and executed,
 # stray globals before every exercise stub (tests/kit/conftest.py collects it only here).
 kit: vendor
-	$(PYTEST) tests/kit --ignore=tests/kit/test_pdf.py -o addopts="-ra" --timeout 3600
+	$(PYTEST) tests/kit -o addopts="-ra" --timeout 3600
 
 # Debian's TeX for the PDF, installed when missing (needs root; CI runs as root).
 TEX_PACKAGES := texlive-xetex texlive-latex-extra texlive-fonts-recommended latexmk xindy \
@@ -164,7 +164,7 @@ tex:
 # The printed edition, then its checks (the pdf layer of make test).
 pdf: tex $(STAMP)
 	$(BIN)/python -m tools.pdf_edition --out _build/pdf
-	$(PYTEST) tests/kit/test_pdf.py -o addopts="-ra"
+	$(PYTEST) tests/pdf -o addopts="-ra"
 
 clean:
 	rm -rf _build _vendor .pytest_cache .ruff_cache .hypothesis

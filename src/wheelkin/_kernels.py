@@ -19,7 +19,7 @@ Taylor series :math:`a = 1 - \varphi^2/6 + \varphi^4/120`,
 above it the closed forms are used, with :math:`1-\cos` written as :math:`2\sin^2(\varphi/2)`
 so that nothing cancels. Either way both factors are within :math:`2\varepsilon`
 (relative; :math:`\varepsilon = 2^{-52}`) of the exact values for every normal float
-:math:`\varphi`, on the float and on the array path (``tests/test_kernels.py`` checks this
+:math:`\varphi`, on the float and on the array path (``tests/library/test_kernels.py`` checks this
 against 50-digit arithmetic; for a subnormal :math:`\varphi`, :math:`b = \varphi/2` is rounded
 to the subnormal grid).
 """

@@ -24,7 +24,7 @@ which for the two front wheels at :math:`y = \pm W/2` is the Ackermann condition
 :math:`\cot\delta_R - \cot\delta_L = W/L` (for a left turn).
 
 The check against the ROS 2 steering controllers (``steering_controllers_library``,
-``steering_odometry.cpp`` of ros-controls/ros2_controllers) is in ``tests/test_carlike.py``.
+``steering_odometry.cpp`` of ros-controls/ros2_controllers) is in ``tests/library/test_carlike.py``.
 """
 
 from __future__ import annotations

@@ -1,8 +1,9 @@
-"""The instructor's kit: student edition, grader, printed edition (``make kit``, ``make pdf``).
+"""The instructor's kit: student edition and grader (``make kit``; the printed edition's
+tests are in tests/pdf, ``make pdf``).
 
-These tests build whole editions (minutes, not seconds), so they run in their own layers of
+These tests build whole editions (minutes, not seconds), so they run in their own layer of
 ``make test``: they are collected only when pytest is pointed at ``tests/kit`` (or a file in
-it), never by the library layer's ``pytest tests``.
+it), never by a run over the other layers' folders.
 """
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ twist exactly and step 4 integrates it exactly, so a constant command reproduces
 circle to rounding (1e-10 mm over 10 m). A command that varies in time is sampled at the middle
 of each step (the controller of :meth:`World.run` is called with the step's midpoint time),
 which makes the scheme the exponential midpoint rule: second order, 1e-4 to 1e-3 mm over 10 m
-at 1/240 s for smooth commands, against a budget of 0.01 mm (tests/test_sandbox_fidelity.py,
+at 1/240 s for smooth commands, against a budget of 0.01 mm (tests/sandbox/test_sandbox_fidelity.py,
 and the gallery page notebooks/02_sandbox).
 
 Speed: the hot loop is plain floats (no numpy for 3-vectors), the body's state is written to

@@ -21,7 +21,7 @@ from pathlib import Path
 import nbformat
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 CHAPTERS = sorted(p for p in (ROOT / "notebooks").iterdir()
                   if p.is_dir() and re.match(r"\d\d_", p.name))
 SECTIONS = sorted(p for chapter in CHAPTERS for p in chapter.glob("[0-9][0-9]_*.ipynb"))

@@ -24,7 +24,7 @@ import pytest
 
 from tools.book_pages import NOTEBOOKS, notebook_id, notebooks
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 #: Words that put a sentence in a source's context (quoting or translating its convention).
 SOURCE_CONTEXT = re.compile(

@@ -24,7 +24,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 LAB_STAMP = ROOT / ".venv" / ".installed-lab"
 STARTUP_S = 45
 

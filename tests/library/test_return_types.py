@@ -164,7 +164,7 @@ STATE_WRAPPERS = ("world.", "car.PurePursuitDriver.__call__")
 
 
 def test_every_sandbox_callable_follows_the_return_rule():
-    import test_bad_input_sandbox as sandbox_sweep
+    from tests.sandbox import test_bad_input_sandbox as sandbox_sweep
 
     checked, broken = 0, []
     for qualname in sorted(sandbox_sweep._ENTRIES):

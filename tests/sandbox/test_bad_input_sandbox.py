@@ -1,6 +1,6 @@
 """Bad input in the sandbox: every public callable, record and method of ``wheelkin.sandbox``
 (and the sandbox page's panel view), called with one argument at a time replaced by a bad
-value (the sweep's values of tests/test_bad_input.py: NaN, +-inf, None, a string, True, an
+value (the sweep's values of tests/library/test_bad_input.py: NaN, +-inf, None, a string, True, an
 empty and a wrong-shaped array, 5e-324 and 1e300).
 
 Passing is a ValueError or TypeError whose message names a parameter of the callable, or a
@@ -31,8 +31,8 @@ import numpy as np
 import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
-from test_bad_input import BAD_VALUES, _finite_leaves
 
+from tests.library.test_bad_input import BAD_VALUES, _finite_leaves
 from wheelkin.style import fixed_layout
 
 SANDBOX_MODULES = ("world", "sensors", "render", "vehicles", "contact", "car", "runs")

@@ -24,7 +24,7 @@ import pytest
 
 from tools.book_pages import NON_CHAPTER_NOTEBOOKS, chapters, notebook_id, notebooks
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 MIN_EXERCISES = 3
 CHECK_CALL = re.compile(r"""\bcheck\(\s*["']([\w.]+)["']""")

@@ -19,7 +19,7 @@ import nbformat
 
 from tools.book_pages import NOTEBOOKS, notebook_id, notebooks
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 ERRATA_PAGE = ROOT / "book" / "errata.md"
 ERRATA_DIR = ROOT / "book" / "errata"

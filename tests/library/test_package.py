@@ -26,7 +26,7 @@ import pytest
 
 from wheelkin._registry import FORMULA_MODULES, SUPPORT_MODULES
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 HEAVY = ("matplotlib", "pymunk", "ipywidgets", "sympy", "scipy", "IPython")
 
 pytestmark = pytest.mark.package

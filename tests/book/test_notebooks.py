@@ -23,7 +23,7 @@ from tools.execute_notebooks import (
     problems,
 )
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 #: A notebook file's budget (its outputs included): one section page of the reader's edition.
 MAX_BYTES = 1_500_000
