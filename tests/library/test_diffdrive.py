@@ -14,7 +14,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from wheelkin import diffdrive as dd
-from wheelkin.exercises import check, get
 
 W_MM, ENC = 85, 8043
 finite = st.floats(-5.0, 5.0, allow_nan=False)
@@ -393,82 +392,6 @@ def test_constants():
 def test_bad_input_names_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
-
-
-# ------------------------------------------------------------------ exercises
-
-EXERCISES = ["diffdrive.wheel_speeds", "diffdrive.wheel_speeds_steps", "diffdrive.omega_limit",
-             "diffdrive.count_time"]
-
-
-@pytest.mark.parametrize("name", EXERCISES)
-def test_exercise_reference_passes_and_stub_is_friendly(name):
-    ex = get(name)
-    assert check(name, ex.reference).passed
-
-    def stub(*args):
-        raise NotImplementedError
-
-    result = check(name, stub)
-    assert not result.passed and result.kind == "not-written"
-
-
-@pytest.mark.parametrize("name", EXERCISES)
-def test_exercise_mistakes_are_diagnosed(name):
-    ex = get(name)
-    assert len(ex.mistakes) >= 2
-    for wrong, text in ex.mistakes:
-        result = check(name, wrong)
-        assert not result.passed
-        assert text in result.message
-
-
-def test_exercise_swapped_wheels_are_named():
-    def swapped(v, omega, track_width):
-        left, right = dd.wheel_speeds(v, omega, track_width)
-        return right, left
-
-    result = check("diffdrive.wheel_speeds", swapped)
-    assert result.kind == "swapped" and "v_left and v_right" in result.message
-
-
-# ------------------------------------------------------------------ panels
-
-
-def test_panels_sweep_every_slider_without_error():
-    import itertools
-
-    from wheelkin.widgets import all_panels, slider_values
-
-    panels = {k: f for k, f in all_panels().items() if k.startswith("diffdrive.")}
-    assert set(panels) == {"diffdrive.wheel_speeds", "diffdrive.speedometer"}
-    for factory in panels.values():
-        panel = factory()
-        try:
-            values = {name: slider_values(c, n=3) for name, c in panel.controls.items()}
-            for combo in itertools.product(*values.values()):
-                panel.redraw(**dict(zip(values, combo, strict=True)))
-                assert panel.image.value[:4] == b"\x89PNG"
-        finally:
-            panel.close()
-
-
-def test_wheel_speed_view_flags_the_int32_overflow():
-    from matplotlib.figure import Figure
-
-    from wheelkin.widgets.diffdrive import DiffDriveView
-
-    view = DiffDriveView(Figure())
-    view.update(0, 3141)
-    assert "OVERFLOW" not in view.bar_text[2].get_text()
-    view.update(0, 3142)
-    assert "OVERFLOW" in view.bar_text[2].get_text()
-    # the as-printed row drives the centre at half the commanded speed
-    view.update(1000, 0)
-    assert view.bar_text[1].get_text().startswith("centre 500 ")
-    assert view.bar_text[0].get_text().startswith("centre 1000 ")
-
-
 
 
 # --------------------------------------------------------------------------------------------

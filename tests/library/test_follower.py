@@ -25,13 +25,6 @@ def test_waypoints_holds_plans_only_and_the_follower_builds_on_it():
     assert fo.PathFollower.__module__ == "wheelkin.follower"
 
 
-def test_widgets_reexport_the_reduced_model():
-    pytest.importorskip("pymunk")
-    from wheelkin.widgets import waypoints as ww
-
-    assert ww.KinematicSkidSteer is fo.KinematicSkidSteer
-
-
 # --------------------------------------------------------------------------- the follower
 @settings(max_examples=100)
 @given(st.floats(0.05, 0.5), st.floats(-0.3, 0.3), st.floats(-0.6, 0.6))

@@ -13,7 +13,6 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from wheelkin import frames, mecanum
-from wheelkin.exercises import all_exercises, check
 from wheelkin.mecanum import (
     DOCUMENT_MAX_SPEED,
     EXAMPLE_GEOMETRY,
@@ -353,48 +352,6 @@ def test_go_to_point_at_goal_and_vectorised():
 def test_bad_input_names_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
-
-
-# --- exercises and panels -------------------------------------------------------------------------
-
-MECANUM_EXERCISES = sorted(n for n in all_exercises() if n.startswith("mecanum."))
-
-
-def test_at_least_three_exercises():
-    assert len(MECANUM_EXERCISES) >= 3
-
-
-@pytest.mark.parametrize("name", MECANUM_EXERCISES)
-def test_exercise_reference_passes_stub_fails_and_mistakes_are_named(name):
-    ex = all_exercises()[name]
-    assert check(name, ex.reference).passed
-
-    def stub(*args):
-        raise NotImplementedError
-
-    result = check(name, stub)
-    assert not result.passed and result.kind == "not-written"
-    for wrong, text in ex.mistakes:
-        got = check(name, wrong)
-        assert not got.passed and text in got.message, (name, text, got.message)
-
-
-def test_panels_sweep_without_raising():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    from wheelkin.widgets import all_panels, slider_values
-
-    panels = {n: f for n, f in all_panels().items() if n.startswith("mecanum.")}
-    assert len(panels) >= 3
-    for factory in panels.values():
-        panel = factory()
-        try:
-            for cname, control in panel.controls.items():
-                for value in slider_values(control, n=3):
-                    panel.redraw(**{cname: value})
-        finally:
-            panel.close()
 
 
 # --- grip and the sandbox ---------------------------------------------------------------------

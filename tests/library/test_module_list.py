@@ -2,7 +2,7 @@
 
 Every tool that walks the library reads ``FORMULA_MODULES``; here the list is checked against
 the source tree (no module left out, none that does not exist), against mypy's file list in
-pyproject.toml, and against the layers.
+pyproject.toml, against the layers, and against the mutation tool's mutants.
 """
 
 from __future__ import annotations
@@ -44,3 +44,12 @@ def test_mypy_checks_exactly_the_listed_modules():
     config = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
     files = config["tool"]["mypy"]["files"]
     assert sorted(files) == [f"src/wheelkin/{m}.py" for m in _registry.TYPED_MODULES]
+
+
+def test_the_mutation_tool_covers_every_formula_module_with_live_texts():
+    from tools import mutation
+
+    assert mutation.uncovered() == []
+    assert mutation.stale(mutation.MUTANTS) == []
+    for _, tests, _, _, _ in mutation.MUTANTS:
+        assert mutation.test_files(tests)  # each named test file exists, once

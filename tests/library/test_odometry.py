@@ -19,8 +19,6 @@ from hypothesis import strategies as st
 
 from wheelkin import frames
 from wheelkin import odometry as odo
-from wheelkin.exercises import get
-from wheelkin.widgets import all_panels, slider_values
 
 K = 8.043  # steps per mm
 W = 85.0  # wheel base, mm
@@ -388,66 +386,6 @@ def test_fixed_point_returns_integers():
 def test_bad_input_raises_value_error_naming_it(call, name):
     with pytest.raises(ValueError, match=name):
         call()
-
-
-# --- exercises and panels -----------------------------------------------------------------------
-
-EXERCISES = ["odometry.center_and_turn", "odometry.midpoint_step", "odometry.exact_step",
-             "odometry.alpha_mrad"]
-
-
-@pytest.mark.parametrize("name", EXERCISES)
-def test_exercise_reference_passes_and_stub_says_not_written(name):
-    ex = get(name)
-    assert ex.check(ex.reference).passed
-
-    def stub(*args):
-        raise NotImplementedError
-
-    result = ex.check(stub)
-    assert not result.passed
-    assert result.kind == "not-written"
-
-
-def test_exercise_mistakes_are_named():
-    def readme_center(n_left, n_right, steps_per_mm, track_width_mm):
-        return ((n_left - n_right) / 2 / steps_per_mm,
-                (n_right - n_left) / steps_per_mm / track_width_mm)
-
-    assert "(L + R)" in get("odometry.center_and_turn").check(readme_center).message
-
-    def end_heading(x, y, theta, distance, dtheta):
-        t = theta + dtheta
-        return (x + distance * math.cos(t), y + distance * math.sin(t), t)
-
-    assert "end" in get("odometry.midpoint_step").check(end_heading).message
-
-    def rounded(n_left, n_right, steps_per_mm, track_width_mm):
-        return round(1000 * (n_right - n_left) / (steps_per_mm * track_width_mm))
-
-    assert "toward zero" in get("odometry.alpha_mrad").check(rounded).message
-
-    def naive_exact(x, y, theta, distance, dtheta):
-        r = distance / dtheta
-        return (x + r * (math.sin(theta + dtheta) - math.sin(theta)),
-                y - r * (math.cos(theta + dtheta) - math.cos(theta)), theta + dtheta)
-
-    res = get("odometry.exact_step").check(naive_exact)
-    assert not res.passed
-    assert res.kind in ("raised", "nan")
-
-
-def test_every_odometry_panel_survives_every_slider_value():
-    panels = {k: f for k, f in all_panels().items() if k.startswith("odometry.")}
-    assert panels
-    for factory in panels.values():
-        panel = factory()
-        try:
-            for name, control in panel.controls.items():
-                for value in slider_values(control):
-                    panel.redraw(**{name: value})
-        finally:
-            panel.close()
 
 
 # --------------------------------------------------------------------------------------------
