@@ -25,18 +25,23 @@ PYTEST := $(BIN)/python -m pytest -p no:cacheprovider
 NB_ENV := PYTHONHASHSEED=0 MPLBACKEND=module://matplotlib_inline.backend_inline \
   SOURCE_DATE_EPOCH=1767225600 TZ=UTC LC_ALL=C.UTF-8 PYDEVD_DISABLE_FILE_VALIDATION=1
 
-LAYERS := lint unit nbval book browser kit pdf
+# The layers of `make test`, in order. The test layers are the folders of tests/: library
+# (with the doctests), sandbox, panels, book-tests (tests/book), browser, kit, pdf; lint, nbval
+# and book (the build, which browser needs) are steps of their own.
+LAYERS := lint library sandbox panels book-tests nbval book browser kit pdf
 
-.PHONY: help setup book vendor test $(LAYERS) notebooks serve serve-live bench clean mutation lab student grade tex
+.PHONY: help setup book vendor test unit $(LAYERS) notebooks serve serve-live bench clean mutation lab student \
+  grade tex
 
 help:
 	@echo "make book       build the HTML book into _build/html (set-up included)"
-	@echo "make test       ruff, library tests + doctests, strict nbval, book build, browser tests"
+	@echo "make test       every layer: $(LAYERS)"
+	@echo "make unit       the fast layers: library (+ doctests), sandbox, panels, book-tests"
 	@echo "make notebooks  re-execute every notebook in place, deterministically"
 	@echo "make serve      build, then serve _build/html on http://127.0.0.1:$(PORT)"
 	@echo "make serve-live the book with live pages (a local kernel) on http://127.0.0.1:$(LIVE_PORT)"
 	@echo "make lab        JupyterLab (pinned, with jupyterlab-myst) in notebooks/ on 127.0.0.1:$(LAB_PORT)"
-	@echo "make bench      run every benchmark (benchmarks/run_all.py)"
+	@echo "make bench      run every benchmark (python -m benchmarks.run_all)"
 	@echo "make mutation   mutate the formula modules; the unit tests must kill every mutant"
 	@echo "make student    student edition: notebooks without solutions + web edition in _build/student"
 	@echo "make grade SUBMISSIONS=dir   grade submitted notebooks into _build/grades (grades.csv, results.json)"
@@ -78,8 +83,20 @@ lint: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/mypy
 
-unit: $(STAMP)
-	$(PYTEST) -n 2 tests src/wheelkin --ignore=tests/browser --ignore=tests/pdf
+# One folder of tests/ per layer; the library layer runs the formula modules' doctests too.
+library: $(STAMP)
+	$(PYTEST) -n 2 tests/library src/wheelkin
+
+sandbox: $(STAMP)
+	$(PYTEST) -n 2 tests/sandbox
+
+panels: $(STAMP)
+	$(PYTEST) -n 2 tests/panels
+
+book-tests: $(STAMP)
+	$(PYTEST) -n 2 tests/book
+
+unit: library sandbox panels book-tests
 
 nbval: $(STAMP)
 	$(NB_ENV) $(PYTEST) -p tools.nbval_jupyter_history \
