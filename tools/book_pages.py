@@ -2,7 +2,7 @@
 
 Shared by the tools and tests (execution, notebook checks, exercise checks, errata, browser
 tests), so that none of them hard-codes the list of chapters. Two layouts live side by side
-(docs/DESIGN.md, "Pages of one idea"):
+(docs/DESIGN.md, "Chapter anatomy"):
 
 - first edition: a chapter is one notebook, ``notebooks/03_rover.ipynb``;
 - second edition: a chapter is a folder, ``notebooks/03_rover/index.md`` (the landing page)

@@ -13,7 +13,7 @@ Loaded by ``_config.yml`` (``sphinx.local_extensions``). Four jobs:
 3. Matplotlib's ``to_jshtml`` player (the book's animations) links a Font Awesome 4 stylesheet
    from a CDN for its button icons. The theme already ships Font Awesome 6, whose ``fa fa-*``
    classes draw the same icons, so that ``<link>`` is removed from every HTML output.
-4. A light first visit (docs/DESIGN.md, "A light first visit"): the theme loads Font Awesome's
+4. A light first visit (docs/DESIGN.md, "The site"): the theme loads Font Awesome's
    JavaScript (``scripts/fontawesome.js``, 1.5 MB) on every page, only to replace each
    ``<i class="fa-...">`` icon by an inline SVG. The theme's stylesheet already carries Font
    Awesome's CSS (every ``.fa-*:before`` glyph and the ``@font-face`` of its web fonts), which

@@ -1,7 +1,7 @@
 """The reader's edition, page by page: every section teaches, then tests understanding.
 
 Reads the committed notebooks and chapter index pages (nothing is executed). The rules are
-docs/DESIGN.md's "Pages of one idea" and "Teach, then test understanding":
+docs/DESIGN.md's "Chapter anatomy" and "Teach, then test understanding":
 
 - a section opens with an "In this section" admonition and ends with a Summary of 3-5 bullets;
 - a chapter index says what the reader will be able to do;

@@ -1,4 +1,4 @@
-"""One rule for what the library returns (docs/DESIGN.md, "The library, second edition"):
+"""One rule for what the library returns (docs/DESIGN.md, "What the library returns"):
 
 1. one quantity: a Python ``float`` (``int`` in the integer emulation) for scalar input, an
    ``ndarray`` for array input; never a 0-d array or a NumPy scalar;
