@@ -336,6 +336,7 @@ def run(only: str | None, timeout: float) -> int:
         print("the unmutated library fails these tests; fix that first:\n  " + "\n  ".join(files))
         return 2
     killed, stale, per_module = 0, 0, {}
+    width = max((len(m[0]) for m in chosen), default=6)  # the module column fits every name
     for module, tests, what, old, new in chosen:
         with tempfile.TemporaryDirectory() as tmp:
             src = Path(tmp) / "src"
@@ -353,12 +354,12 @@ def run(only: str | None, timeout: float) -> int:
             tally = per_module.setdefault(module, [0, 0])
             tally[0] += 1
             tally[1] += dead
-            print(f"{'killed ' if dead else 'SURVIVED'} {module:15s} {what} "
+            print(f"{'killed ' if dead else 'SURVIVED'} {module:{width}s} {what} "
                   f"({time.perf_counter() - start:.0f} s)", flush=True)
     total = len(chosen) - stale
-    print("\nmodule            mutants  killed")
+    print(f"\n{'module':{width}s}  mutants  killed")
     for module, (n, k) in per_module.items():
-        print(f"{module:17s} {n:7d} {k:7d}")
+        print(f"{module:{width}s} {n:8d} {k:7d}")
     print(f"\nkilled {killed} of {total} mutants ({100 * killed / max(total, 1):.0f} %) in "
           f"{time.perf_counter() - begin:.0f} s; {len(EQUIVALENT)} equivalent mutants left out")
     if stale:
