@@ -21,7 +21,7 @@ Precomputed views (the built site ``_build/html``), per page with panels:
 - **build time**: drawing every image of every panel from an empty cache, two panels at a time
   (what ``make book`` adds to a fresh clone; later builds reuse the cache).
 
-Usage: ``python benchmarks/live.py [--moves 6] [--only PAGE ...] [--no-write]`` after
+Usage: ``python -m benchmarks.live [--moves 6] [--only PAGE ...] [--no-write]`` after
 ``make book``; writes the "live" section of benchmarks/RESULTS.md.
 """
 
@@ -39,15 +39,13 @@ from pathlib import Path
 
 import numpy as np
 
+from tools.book_pages import chapter_of
+from tools.book_site import CHROMIUM, CHROMIUM_ARGS, SITE
+from tools.live_site import PANEL_CONTROLS, PANEL_PAGES, lock_down, make_live, serve_live
+from tools.results import cpu, markers, write_section
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tests" / "browser"))
-sys.path.insert(0, str(ROOT / "tools"))
-from _results import cpu, markers, write_section  # noqa: E402
-from book_pages import chapter_of  # noqa: E402
-from book_site import CHROMIUM, CHROMIUM_ARGS, SITE  # noqa: E402
-from live_site import PANEL_CONTROLS, PANEL_PAGES, lock_down, make_live, serve_live  # noqa: E402
 
 BUDGET_MS = 150.0
 BEGIN, END = markers("live")
@@ -187,7 +185,7 @@ def section(page_rows, panel_rows, byte_rows, build, moves) -> str:
     lines = [BEGIN, "## Live pages and precomputed panels", "",
              f"Machine: {cpu()}; Debian's chromium, headless. Date: {_dt.date.today()}. Load "
              f"average (1, 5, 15 min) at the end: {load[0]:.1f}, {load[1]:.1f}, {load[2]:.1f}. "
-             "Produced by `python benchmarks/live.py` (method in its docstring).", "",
+             "Produced by `python -m benchmarks.live` (method in its docstring).", "",
              "### Kernel ready after the click (per chapter)", "",
              "| chapter | pages | kernel ready, median (s) | page ready, median (s) |",
              "| --- | --- | --- | --- |"]

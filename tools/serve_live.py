@@ -18,7 +18,7 @@ lab stack (``requirements-lab.txt`` brings ``jupyter_server``). It
 The plain site (``make book``, ``make serve``) has none of this: the pages carry no live
 control, and nothing in them refers to ``/_live/``.
 
-Usage: ``python tools/serve_live.py [--port 8001] [--kernel-port 8889] [--site DIR]``; a port
+Usage: ``python -m tools.serve_live [--port 8001] [--kernel-port 8889] [--site DIR]``; a port
 of 0 takes a free one. Run as root (CI, a container), the Jupyter server needs ``--allow-root``,
 which is passed then.
 """
@@ -42,11 +42,11 @@ import urllib.request
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
+from tools.vendor_assets import VENDOR_LIVE, live_complete
+
 ROOT = Path(__file__).resolve().parents[1]
 SITE = ROOT / "_build" / "html"
 LIVE_ASSETS = ROOT / "book" / "_live"
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from vendor_assets import VENDOR_LIVE, live_complete  # noqa: E402
 
 NOTEBOOKS = ROOT / "notebooks"
 LOG = ROOT / "_build" / "serve-live.log"
@@ -195,7 +195,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if not live_complete():
         print("serve_live: Thebe is not vendored (_vendor_live/): run "
-              "`python tools/vendor_assets.py` (needs npm)", file=sys.stderr)
+              "`python -m tools.vendor_assets` (needs npm)", file=sys.stderr)
         return 2
     port = args.port or free_port()
     kernel_port = args.kernel_port or free_port()

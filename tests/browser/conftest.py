@@ -16,7 +16,8 @@ from pathlib import Path
 from urllib.parse import urlsplit
 
 import pytest
-from book_site import (
+
+from tools.book_site import (
     ALLOWED_CONSOLE_ERRORS,
     CHROMIUM,
     CHROMIUM_ARGS,

@@ -10,7 +10,8 @@ import re
 from urllib.parse import unquote
 
 import pytest
-from book_site import PAGES, SITE
+
+from tools.book_site import PAGES, SITE
 
 
 @pytest.mark.parametrize("page", PAGES)

@@ -23,8 +23,9 @@ from __future__ import annotations
 import re
 
 import pytest
-from book_site import IN_CI, PAGES, SITE
-from live_site import (
+
+from tools.book_site import IN_CI, PAGES, SITE
+from tools.live_site import (
     PANEL_CONTROLS,
     PANEL_PAGES,
     live_ready,

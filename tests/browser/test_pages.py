@@ -16,9 +16,9 @@ from pathlib import Path
 from urllib.parse import unquote, urldefrag
 
 import pytest
-from book_site import NON_CHAPTER_NOTEBOOKS, PAGES, ROOT, SITE
 
 from tools.book_pages import chapter_of
+from tools.book_site import NON_CHAPTER_NOTEBOOKS, PAGES, ROOT, SITE
 from tools.png_text import image_bytes, text_px
 
 MAX_PAGE_BYTES = 3_000_000

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import io
 import json
-import sys
 from pathlib import Path
 
 import ipywidgets as W
@@ -18,13 +17,12 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from tools.book_pages import toc_files
+from tools.png_text import png_info
 from wheelkin.widgets import all_panels
 from wheelkin.widgets.precomputed import GRIDS, Grid, describe, grid, render
 
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import toc_files  # noqa: E402
-from png_text import png_info  # noqa: E402
 
 PANELS = sorted(all_panels())
 

@@ -17,15 +17,13 @@ import os
 import re
 import signal
 import subprocess
-import sys
 import threading
 import time
 from collections.abc import Iterator
 from urllib.parse import urlsplit
 
-from book_site import ROOT, SITE, toc_files
+from tools.book_site import ROOT, SITE, toc_files
 
-SERVE_LIVE = ROOT / "tools" / "serve_live.py"
 PYTHON = ROOT / ".venv" / "bin" / "python"
 
 
@@ -49,8 +47,7 @@ PANEL_PAGES: dict[str, list[str]] = _panel_pages()
 
 def live_ready() -> str | None:
     """Why live pages cannot be served here, or None when they can."""
-    sys.path.insert(0, str(ROOT / "tools"))
-    from vendor_assets import live_complete
+    from tools.vendor_assets import live_complete
 
     if not (SITE / "index.html").is_file():
         return "no built book: run `make book`"
@@ -71,7 +68,7 @@ def serve_live(timeout: float = 120.0) -> Iterator[str]:
     Stopping sends SIGTERM (what Ctrl-C does to it) and waits for its clean exit: the site and
     the Jupyter server with its kernels are stopped, or the process group is killed.
     """
-    command = [str(PYTHON), str(SERVE_LIVE), "--port", "0", "--kernel-port", "0",
+    command = [str(PYTHON), "-m", "tools.serve_live", "--port", "0", "--kernel-port", "0",
                "--site", str(SITE)]
     process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                text=True, start_new_session=True, cwd=ROOT)

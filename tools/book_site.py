@@ -7,7 +7,7 @@ from pathlib import Path
 
 from tools.book_pages import NON_CHAPTER_NOTEBOOKS, toc_files  # noqa: F401
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[1]
 
 #: The built book: _build/html, or the folder named by WHEELKIN_SITE (a build of one's own,
 #: e.g. `jupyter-book build . --path-output /tmp/x` then WHEELKIN_SITE=/tmp/x/_build/html).
