@@ -113,7 +113,7 @@ def _good_values() -> dict:
         "roller_angle": 0.785, "load_fraction": 0.5, "width": 0.01, "mass": 1.0,
         "inertia": 0.01, "body": spec.body, "wheels": spec.wheels, "encoder_noise": 0.0,
         "motor_time_constant": 0.0, "steered_names": None, "free_rolling": (),
-        "load_fractions": (0.4, 0.4, 0.2), "casters": False, "w": 0.5, "track_width": 0.1,
+        "load_fractions": (0.5, 0.5), "casters": False, "caster": True, "w": 0.5, "track_width": 0.1,
         "wheel_radius": 0.02, "caster_offset": 0.05, "caster_load": 0.2, "half_track": 0.06,
         "half_wheelbase": 0.05, "d1": 0.18, "d2": 0.27, "d3": 0.27, "d4": 0.26,
         "vertices": [(-0.1, -0.05), (0.1, -0.05), (0.1, 0.05), (-0.1, 0.05)],

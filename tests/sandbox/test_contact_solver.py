@@ -37,7 +37,7 @@ from wheelkin.sandbox.contact import (
     _Warm,
     dissipation_objective,
 )
-from wheelkin.sandbox.vehicles import GRAVITY
+from wheelkin.sandbox.vehicles import GRAVITY, diff_drive
 
 DT = 1 / 240
 
@@ -223,11 +223,13 @@ def test_the_fallback_answer_is_the_maximum_dissipation_answer(which, rates, xp)
 # One step from rest, every wheel asked for the same forward speed dv. By symmetry each driven
 # wheel takes an equal share of the momentum m dv: a conventional wheel along x; a mecanum
 # wheel along its roller axis at 45 degrees, so its impulse is sqrt 2 times its share. The
-# friction caps mu N dt then limit dv to mu g dt (skid steer: all the weight on the wheels),
-# (1 - caster share) mu g dt (diff drive), mu g dt / sqrt 2 (mecanum).
+# friction caps mu N dt then limit dv to mu g dt (skid steer, and the Zumo on its two tracks:
+# all the weight on the driven wheels), (1 - caster share) mu g dt (a diff drive with a caster
+# carrying a fifth of the weight), mu g dt / sqrt 2 (mecanum).
 LIMITS = {
     "skid steer": (LAB_ROBOT, 1.0),
-    "diff drive": (RADON_ULZER, 0.8),
+    "diff drive, two tracks": (RADON_ULZER, 1.0),
+    "diff drive with a caster": (diff_drive(0.085, 0.018, caster_load=0.2), 0.8),
     "mecanum": (MECANUM_ROBOT, 1 / math.sqrt(2)),
 }
 
@@ -394,10 +396,11 @@ def test_projected_gauss_seidel_finds_the_optimum_for_rollers():
 
 def test_projected_gauss_seidel_caps_a_wheel_in_its_disc():
     """The fallback on two-row wheels: a diff drive asked for 1.5 or 30 times what friction
-    can give in one step from rest gains 0.8 mu g dt (hand calculation above), each wheel's
-    impulse on its circle."""
-    model = ContactModel(RADON_ULZER, (), DT)
-    limit = 0.8 * RADON_ULZER.mu * GRAVITY * DT
+    can give in one step from rest gains 0.8 mu g dt when a caster carries a fifth of the weight
+    (hand calculation above), each wheel's impulse on its circle."""
+    spec = diff_drive(0.085, 0.018, caster_load=0.2)
+    model = ContactModel(spec, (), DT)
+    limit = 0.8 * spec.mu * GRAVITY * DT
     forward = np.linalg.lstsq(model.B, model.J @ [1.0, 0.0, 0.0], rcond=None)[0]
     for times in (1.5, 30.0):
         b = model.B @ (times * limit * forward)

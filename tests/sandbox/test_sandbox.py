@@ -38,6 +38,8 @@ from wheelkin.unified import WheelConstraint
 DT = 1 / 240
 INCH = 0.0254
 ALL = [RADON_ULZER, LAB_ROBOT, MECANUM_ROBOT, OPEN_SOURCE_ROVER]
+#: A differential drive with a caster (the factory's default; the Radon Ulzer has none).
+CASTER_BOT = diff_drive(0.1, 0.02)
 IDS = ["diff drive", "skid steer", "mecanum", "rover"]
 
 
@@ -45,9 +47,10 @@ IDS = ["diff drive", "skid steer", "mecanum", "rover"]
 @pytest.mark.parametrize(
     "make, param",
     [
-        (lambda: RADON_ULZER.replace(load_fractions=(1.5, -0.25, -0.25)), "load_fractions"),
-        (lambda: RADON_ULZER.replace(load_fractions=(0.5, 0.5)), "load_fractions"),
-        (lambda: RADON_ULZER.replace(load_fractions=(0.5, 0.5, 0.5)), "load_fractions"),
+        (lambda: CASTER_BOT.replace(load_fractions=(1.5, -0.25, -0.25)), "load_fractions"),
+        (lambda: CASTER_BOT.replace(load_fractions=(0.5, 0.5)), "load_fractions"),
+        (lambda: CASTER_BOT.replace(load_fractions=(0.5, 0.5, 0.5)), "load_fractions"),
+        (lambda: RADON_ULZER.replace(load_fractions=(0.5, 0.5, 0.0)), "load_fractions"),
         (lambda: RADON_ULZER.replace(wheels=("L", "R")), "wheels"),
         (lambda: RADON_ULZER.replace(wheels=RADON_ULZER.wheels[0]), "wheels"),
         (lambda: OPEN_SOURCE_ROVER.replace(
@@ -76,7 +79,8 @@ IDS = ["diff drive", "skid steer", "mecanum", "rover"]
         (lambda: RADON_ULZER.replace(body=((0, 0), (1, 0))), "body"),
         (lambda: OPEN_SOURCE_ROVER.replace(steered_names=("LF", "RF", "LB", "LM")),
          "steered_names"),
-        (lambda: RADON_ULZER.replace(wheels=RADON_ULZER.wheels[:2]), "load_fractions"),
+        (lambda: CASTER_BOT.replace(wheels=CASTER_BOT.wheels[:2]), "load_fractions"),
+        (lambda: diff_drive(0.1, 0.02, caster=1), "caster"),
         (lambda: World(dt=0.0), "dt"),
         (lambda: World(dt=-1 / 240), "dt"),
         (lambda: World(dt=float("nan")), "dt"),
@@ -146,7 +150,9 @@ def test_factories_place_the_wheels_as_documented():
                                [(0.05, 0.06), (0.05, -0.06), (-0.05, 0.06), (-0.05, -0.06)])
     assert LAB_ROBOT.driven_wheels[0].wheel_radius == 0.04
     assert RADON_ULZER.wheel_names == ("L", "R")
-    assert [w.kind for w in RADON_ULZER.wheels] == ["fixed", "fixed", "caster"]
+    # the Zumo's two tracks, one contact each under the middle, half the weight each
+    assert [w.kind for w in RADON_ULZER.wheels] == ["fixed", "fixed"]
+    assert RADON_ULZER.load_fractions == (0.5, 0.5)
     # 12 * 75.81 counts per revolution of a 0.113097 m wheel: 8043 steps per metre.
     r = RADON_ULZER.driven_wheels[0].wheel_radius
     assert 2 * math.pi * r == pytest.approx(0.113097)

@@ -184,6 +184,6 @@ def test_slip_panel_blits_the_picture_of_a_full_draw():
                 SlipView(fig).update(mu, omega)
                 fig.canvas.draw()
             np.testing.assert_array_equal(blitted, np.asarray(fig.canvas.buffer_rgba()))
-            assert f"grip ≤ {0.8 * mu * GRAVITY:.2f}" in panel.state.title.get_text()
+            assert f"grip ≤ {mu * GRAVITY:.2f}" in panel.state.title.get_text()  # tracks only
     finally:
         panel.close()

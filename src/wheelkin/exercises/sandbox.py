@@ -29,8 +29,8 @@ __all__ = ["RampExercise", "grip_ramp_time"]
 
 #: The Radon Ulzer's track width W (m): its driven wheels are W/2 either side of the centre.
 TRACK = 0.085
-#: Share of the weight on each driven wheel; the caster carries the rest and gives no push.
-DRIVEN_SHARE = 0.4
+#: Share of the weight on each driven wheel: the sandbox's Zumo rests on its two tracks alone.
+DRIVEN_SHARE = 0.5
 #: How much shorter a ramp the check tries to show that the answer is not needlessly long.
 SLACK = 1.5
 #: How long the check keeps the final command after the ramp, s.
@@ -63,13 +63,13 @@ def grip_ramp_time(v: float, omega: float, mu: float) -> float:
     """The shortest linear ramp (s) that takes the Radon Ulzer from rest to the body twist
     ``(v, 0, omega)`` on friction ``mu`` without a wheel slipping; ``math.inf`` if none does.
 
-    At the end of the ramp each driven wheel (40 % of the weight) must push forward
+    At the end of the ramp each driven wheel (one track, half the weight) must push forward
     ``m v/(2T) + I|omega|/(T W)`` and sideways ``m v |omega| / 2``, together inside its friction
-    circle of radius ``0.4 mu m g``:
-    ``T = (m v/2 + I|omega|/W) / sqrt((0.4 mu m g)^2 - (m v omega/2)^2)``.
+    circle of radius ``0.5 mu m g``:
+    ``T = (m v/2 + I|omega|/W) / sqrt((0.5 mu m g)^2 - (m v omega/2)^2)``.
 
     >>> round(grip_ramp_time(0.5, 3.0, 0.8), 3)
-    0.098
+    0.076
     >>> grip_ramp_time(0.4, 2.5, 0.1)
     inf
     """
@@ -175,15 +175,12 @@ RampExercise(
         (lambda v, omega, mu: _ramp_time(v, omega, mu, turn=False),
          "the turn is ignored. Driving and turning share one friction circle: the sideways "
          "push m v ω / 2 of each driven wheel leaves less grip for speeding up."),
-        (lambda v, omega, mu: _ramp_time(v, omega, mu, share=0.5),
-         "the caster is counted as grip. The caster carries 20 % of the weight and gives no "
-         "push: each driven wheel's circle has radius 0.4 μ m g, not 0.5 μ m g."),
         (lambda v, omega, mu: _ramp_time(v, omega, mu, inertia=False),
          "the yaw acceleration is forgotten. Spinning the body up to ω needs a torque: each "
          "driven wheel pushes an extra I|ω|/(T W) along its rolling direction (a spin on the "
          "spot needs a ramp too)."),
-        (lambda v, omega, mu: _ramp_time(v, omega, mu, share=0.8),
-         "the whole driven weight is given to each wheel. Each driven wheel carries 40 % of "
-         "the weight, so its circle has radius 0.4 μ m g."),
+        (lambda v, omega, mu: _ramp_time(v, omega, mu, share=1.0),
+         "the whole weight is given to each wheel. Each of the two driven wheels carries half "
+         "the weight, so its circle has radius 0.5 μ m g."),
     ],
 )

@@ -43,7 +43,8 @@ silent, the values are our assumptions:
 spec                      geometry                                                    mass
 ========================= =========================================================== ========
 :data:`RADON_ULZER`       diff drive, track 0.085 m, wheel circumference 0.113097 m,  0.25 kg
-                          encoder 12 * 75.81 counts per wheel revolution (8043 /m)
+                          encoder 12 * 75.81 counts per wheel revolution (8043 /m);
+                          the Zumo's two tracks, one contact each, no caster
 :data:`LAB_ROBOT`         skid steer, wheels r = 0.04 m at x = +-0.05 m,              1.4 kg
                           y = +-0.06 m, body 0.2 m x 0.1 m (Webots 4-wheel robot)
 :data:`MECANUM_ROBOT`     mecanum, r = 0.05 m, half wheelbase 0.15 m, half track      4.0 kg
@@ -360,6 +361,7 @@ def diff_drive(
     *,
     mass: float = 0.25,
     inertia: float | None = None,
+    caster: bool = True,
     caster_offset: float | None = None,
     caster_load: float = 0.2,
     body: npt.ArrayLike | None = None,
@@ -367,11 +369,14 @@ def diff_drive(
     **kwargs: object,
 ) -> VehicleSpec:
     """A differential drive: the wheels of :func:`wheelkin.unified.diff_drive_wheels` (L, R
-    on one axle, a passive caster C behind).
+    on one axle, and a passive caster C behind unless ``caster=False``).
 
     The reference point is the axle midpoint; L is at (0, +W/2), R at (0, -W/2), the caster at
     (-caster_offset, 0). The caster carries ``caster_load`` of the weight and exerts no
-    friction; each driven wheel carries (1 - caster_load)/2.
+    friction; each driven wheel carries (1 - caster_load)/2. Without a caster each driven
+    wheel carries half the weight: a robot whose mass centre is on its axle and that rests on
+    its two drives alone (a tracked robot seen as a differential drive, one contact per
+    track, as the Radon Ulzer firmware sees its Zumo).
 
     Parameters
     ----------
@@ -381,6 +386,8 @@ def diff_drive(
         r_w, m.
     mass, inertia : float
         kg and kg m^2 (inertia defaults to the body outline as a uniform plate).
+    caster : bool
+        Include the caster (``caster_offset`` and ``caster_load`` apply only then).
     caster_offset : float, optional
         Distance of the caster behind the axle, m (default 0.5 W).
     caster_load : float
@@ -395,13 +402,22 @@ def diff_drive(
     >>> spec = diff_drive(0.085, 0.018)
     >>> [w.name for w in spec.wheels], [w.position[1] for w in spec.wheels]
     (['L', 'R', 'C'], [0.0425, -0.0425, 0.0])
+    >>> diff_drive(0.085, 0.018, caster=False).load_fractions
+    (0.5, 0.5)
     """
     W = V.positive("track_width", track_width)
     r = V.positive("wheel_radius", wheel_radius)
+    if not isinstance(caster, bool):
+        raise ValueError(f"caster must be True or False, got {caster!r}")
     offset = 0.5 * W if caster_offset is None else V.positive("caster_offset", caster_offset)
     share = V.in_range("caster_load", caster_load, 0.0, 1.0)
     if share >= 1.0:
         raise ValueError(f"caster_load must be in [0, 1), got {caster_load!r}")
+    if not caster:
+        if body is None:
+            body = _rectangle(-0.5 * W, 0.5 * W, -0.4 * W, 0.4 * W)
+        wheels = unified.diff_drive_wheels(W, r, caster=False)
+        return _finish(name, mass, inertia, body, wheels, (0.5, 0.5), **kwargs)
     if body is None:
         body = _rectangle(-offset - 0.2 * W, 0.5 * W, -0.4 * W, 0.4 * W)
     wheels = unified.diff_drive_wheels(W, r, caster_offset=offset)
@@ -620,15 +636,17 @@ def ideal_rates(table: tuple[tuple, ...], vx: float, vy: float, w: float,
     return rates, tuple(angles), rolls
 
 
-#: The firmware robot (Radon Ulzer, a Zumo-class differential drive): track 0.085 m, wheel
-#: circumference 0.113097 m, encoder 12 * 75.81 counts per wheel revolution (8043 steps/m).
+#: The firmware robot: the Radon Ulzer firmware's Pololu Zumo 32U4, which runs on two rubber
+#: tracks, modelled as the firmware models it: a differential drive with one contact per track,
+#: 0.085 m apart, under the middle of the robot, each carrying half the weight (no caster; a
+#: real track's length, which makes it skid in turns, is left out); drive sprockets of
+#: circumference 0.113097 m, encoder 12 * 75.81 counts per sprocket revolution (8043 steps/m).
 RADON_ULZER = diff_drive(
     0.085,
     0.113097 / (2 * math.pi),
     mass=0.25,
-    caster_offset=0.045,
-    caster_load=0.2,
-    body=_rectangle(-0.06, 0.04, -0.035, 0.035),
+    caster=False,
+    body=_rectangle(-0.05, 0.05, -0.035, 0.035),
     name="Radon Ulzer",
     steps_per_rev=12 * 75.81,
 )

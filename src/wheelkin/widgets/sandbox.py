@@ -4,9 +4,10 @@ Panel ``sandbox.slip``: the Radon Ulzer, already turning at 0.4 m/s and a yaw ra
 (slider), keeps that command on a floor of friction coefficient mu (slider). The figure shows
 the kinematic circle of the command (dashed), the sandbox's path for 2 s (red where the
 wheels slip) and the robot at the end. A steady turn needs a centripetal acceleration
-v omega; the driven wheels can give at most 0.8 mu g (the caster carries the rest), so the
-robot holds its circle while v omega <= 0.8 mu g and slides off beyond. (Starting from rest
-would add the acceleration of the speed-up to the same friction budget.)
+v omega; its two tracks carry the whole weight and can give at most mu g, so the robot holds
+its circle while v omega <= mu g and slides off beyond (in the sandbox's model of the Zumo:
+one rigid Coulomb contact per track). Starting from rest would add the acceleration of the
+speed-up to the same friction budget.
 """
 
 from __future__ import annotations
@@ -102,7 +103,9 @@ def _run(mu: float, omega: float):
     dx, dy, _ = arc_step(0.0, 0.0, 0.0, SPEED * t, omega * t)
     ideal = np.column_stack([dx, dy])
     need = SPEED * abs(omega)
-    grip = 0.8 * spec.mu * GRAVITY
+    driven = sum(f for w, f in zip(spec.wheels, spec.load_fractions, strict=True)
+                 if w.kind != "caster")  # the share of the weight on wheels that push
+    grip = driven * spec.mu * GRAVITY
     off = math.dist(traj.pose[-1, :2], ideal[-1])
     title = (f"needs v·ω = {need:.2f} m/s², wheels grip ≤ {grip:.2f} m/s²; "
              f"off the model by {off * 100:.1f} cm after {DURATION:g} s")
