@@ -10,9 +10,14 @@ Usage::
 For every notebook that ``_toc.yml`` lists (chapters and their sections, at any depth):
 
 - cells tagged ``solution`` are removed, with their outputs;
-- markdown cells tagged ``solution-note`` (a sentence pointing at a folded solution) are
-  removed; in other markdown cells, a sentence such as "the solution is folded below" is
-  removed (the fallback for cells not yet tagged);
+- cells tagged ``solution-note`` are removed: a sentence pointing at a folded solution, or a
+  cell that gives an exercise's answer or judgement (the numbers of a design question's
+  verdict, our choices for a design); in other markdown cells, a sentence such as "the
+  solution is folded below" is removed (the fallback for cells not yet tagged);
+- an exercise's statement is never removed: a ``solution-note`` or ``solution`` cell that holds
+  an exercise's heading (``## Exercise 2``, ``**Exercise 2.**``, ``**2. ...**``) is an error,
+  since the student would get a stub without its task (``tests/kit/test_student_tasks.py``
+  checks every exercise's statement, and that nothing after a stub gives its answer away);
 - the notebook is executed top to bottom in a fresh kernel (as ``tools/execute_notebooks.py``
   does: deterministic, failing on an error or a warning), so every cell has its output, and an
   unfinished exercise does not stop it (its ``check`` reports "not written yet");
@@ -58,6 +63,9 @@ SOLUTION_SENTENCE = re.compile(
 SOLUTION_ASIDE = re.compile(
     r"[ \t]*\([^()]*\bsolutions?\b[^()]*\b(?:folded|fold|hidden|collapsed|below)\b[^()]*\)",
     re.IGNORECASE)
+#: An exercise's heading or bold lead: the start of a statement, which is never removed.
+EXERCISE_LEAD = re.compile(
+    r"^(?:#{1,4}[ \t]+Exercise\b|\*\*(?:Exercise\b|\d+(?:[.:)]| \()))", re.M)
 #: Global names a hidden cell must not leave behind (besides every single letter).
 GENERIC_NAMES = frozenset({
     "fig", "ax", "axs", "axes", "ani", "anim", "line", "lines", "t", "ts", "xs", "ys", "zs",
@@ -112,8 +120,14 @@ def student_notebook(nb: nbformat.NotebookNode) -> tuple[nbformat.NotebookNode, 
     nb = nbformat.from_dict(json.loads(json.dumps(nb)))
     changes = {"solutions": 0, "notes": 0, "sentences": 0, "exercises": 0}
     cells = []
-    for cell in nb.cells:
+    for index, cell in enumerate(nb.cells):
         tags = _tags(cell)
+        if tags & {"solution", "solution-note"} and cell.cell_type == "markdown" \
+                and EXERCISE_LEAD.search(cell.source):
+            raise ValueError(
+                f"cell {index} is tagged {sorted(tags & {'solution', 'solution-note'})} but holds "
+                f"an exercise's statement ({EXERCISE_LEAD.search(cell.source).group(0)!r}): the "
+                "student edition would delete the task; split the cell or untag it")
         if "solution" in tags:
             changes["solutions"] += 1
             continue
