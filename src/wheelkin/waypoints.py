@@ -345,7 +345,16 @@ def plan_segments(waypoints: ArrayLike, arc_radius: float | None = LAB_ARC_RADIU
 
 def validate_segments(segments: Segment | Iterable[Segment]) -> list[Segment]:
     """``segments`` as a list of :class:`Segment`; ``ValueError`` unless it is a non-empty
-    sequence of them (one Segment alone is a list of one)."""
+    sequence of them (one Segment alone is a list of one).
+
+    >>> first = plan_segments([[0, 0], [1, 0]])[0]
+    >>> validate_segments(first) == [first]
+    True
+    >>> validate_segments([])
+    Traceback (most recent call last):
+    ...
+    ValueError: segments must be a non-empty list of Segment (from plan_segments)
+    """
     if isinstance(segments, Segment):
         segments = [segments]
     try:
@@ -535,7 +544,16 @@ def planned_wheel_angles(commands: Iterable[WheelCommand], t: ArrayLike) -> np.n
 
 def validate_commands(commands: Iterable[WheelCommand]) -> list[WheelCommand]:
     """``commands`` as a list of :class:`WheelCommand`; ``ValueError`` unless it is a
-    non-empty sequence of them."""
+    non-empty sequence of them.
+
+    >>> cmds = schedule(plan_segments([[0, 0], [0.3, 0]]), 0.04, 0.06)
+    >>> len(validate_commands(tuple(cmds)))
+    1
+    >>> validate_commands([cmds[0].segment])
+    Traceback (most recent call last):
+    ...
+    ValueError: commands must be a non-empty list of WheelCommand (from schedule)
+    """
     try:
         cmds = list(commands)
     except TypeError:
