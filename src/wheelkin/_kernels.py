@@ -7,21 +7,22 @@ directly with values they have already checked.
 
 The small-angle strategy
 ------------------------
-For a turn :math:`\varphi` the arc step needs
+For a turn :math:`\Delta\theta` the arc step needs
 
-.. math:: a(\varphi) = \frac{\sin\varphi}{\varphi}, \qquad
-          b(\varphi) = \frac{1-\cos\varphi}{\varphi} = \frac{2\sin^2(\varphi/2)}{\varphi},
+.. math:: a(\Delta\theta) = \frac{\sin\Delta\theta}{\Delta\theta}, \qquad
+          b(\Delta\theta) = \frac{1-\cos\Delta\theta}{\Delta\theta}
+                          = \frac{2\sin^2(\Delta\theta/2)}{\Delta\theta},
 
-both 0/0 at :math:`\varphi = 0`. Below :data:`SERIES_THRESHOLD` they are evaluated from their
-Taylor series :math:`a = 1 - \varphi^2/6 + \varphi^4/120`,
-:math:`b = \varphi/2 - \varphi^3/24 + \varphi^5/720`, whose truncation errors there are below
-:math:`\varphi^6/5040 < 2\cdot 10^{-28}` (relative), far under one unit in the last place;
-above it the closed forms are used, with :math:`1-\cos` written as :math:`2\sin^2(\varphi/2)`
-so that nothing cancels. Either way both factors are within :math:`2\varepsilon`
-(relative; :math:`\varepsilon = 2^{-52}`) of the exact values for every normal float
-:math:`\varphi`, on the float and on the array path (``tests/library/test_kernels.py`` checks this
-against 50-digit arithmetic; for a subnormal :math:`\varphi`, :math:`b = \varphi/2` is rounded
-to the subnormal grid).
+both 0/0 at :math:`\Delta\theta = 0`. Below :data:`SERIES_THRESHOLD` they are evaluated from
+their Taylor series :math:`a = 1 - \Delta\theta^2/6 + \Delta\theta^4/120`,
+:math:`b = \Delta\theta/2 - \Delta\theta^3/24 + \Delta\theta^5/720`, whose truncation errors
+there are below :math:`\Delta\theta^6/5040 < 2\cdot 10^{-28}` (relative), far under one unit in
+the last place; above it the closed forms are used, with :math:`1-\cos` written as
+:math:`2\sin^2(\Delta\theta/2)` so that nothing cancels. Either way both factors are within
+:math:`2\varepsilon` (relative; :math:`\varepsilon = 2^{-52}`) of the exact values for every
+normal float :math:`\Delta\theta`, on the float and on the array path
+(``tests/library/test_kernels.py`` checks this against 50-digit arithmetic; for a subnormal
+:math:`\Delta\theta`, :math:`b = \Delta\theta/2` is rounded to the subnormal grid).
 """
 
 from __future__ import annotations

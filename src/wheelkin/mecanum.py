@@ -24,7 +24,7 @@ axes; the component along a roller's axis must come from the hub. That gives
 
 .. math::
 
-    \varphi_i = \frac{1}{r_w}\left[(v_x - \omega y_i) + s_i \cot\gamma\,(v_y + \omega x_i)
+    \dot\varphi_i = \frac{1}{r_w}\left[(v_x - \omega y_i) + s_i \cot\gamma\,(v_y + \omega x_i)
     \right],\qquad s = (-1, +1, +1, -1)\ \text{for (FL, FR, RL, RR)}
 
 and, with :math:`k = b + a\cot\gamma` (:math:`k = a + b` at 45 degrees),
@@ -32,10 +32,10 @@ and, with :math:`k = b + a\cot\gamma` (:math:`k = a + b` at 45 degrees),
 .. math::
 
     \begin{aligned}
-    \varphi_{FL} &= (v_x - v_y\cot\gamma - k\,\omega)/r_w, &
-    \varphi_{FR} &= (v_x + v_y\cot\gamma + k\,\omega)/r_w, \\
-    \varphi_{RL} &= (v_x + v_y\cot\gamma - k\,\omega)/r_w, &
-    \varphi_{RR} &= (v_x - v_y\cot\gamma + k\,\omega)/r_w.
+    \dot\varphi_{FL} &= (v_x - v_y\cot\gamma - k\,\omega)/r_w, &
+    \dot\varphi_{FR} &= (v_x + v_y\cot\gamma + k\,\omega)/r_w, \\
+    \dot\varphi_{RL} &= (v_x + v_y\cot\gamma - k\,\omega)/r_w, &
+    \dot\varphi_{RR} &= (v_x - v_y\cot\gamma + k\,\omega)/r_w.
     \end{aligned}
 
 The 4x3 matrix :math:`J` of this map has orthogonal columns, so its pseudo-inverse (the
@@ -173,7 +173,7 @@ def _broadcast(**arrays: np.ndarray) -> list[np.ndarray]:
 
 
 def inverse_matrix(geometry: MecanumGeometry) -> np.ndarray:
-    r"""The 4x3 matrix :math:`J` with :math:`\varphi = J\,(v_x, v_y, \omega)^T`.
+    r"""The 4x3 matrix :math:`J` with :math:`\dot{\boldsymbol\varphi} = J\,(v_x, v_y, \omega)^T`.
 
     Rows FL, FR, RL, RR; columns :math:`v_x, v_y, \omega`:
 
@@ -247,10 +247,10 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
 
     .. math::
 
-        \varphi_{FL} = \frac{v_x - v_y\cot\gamma - k\omega}{r_w},\
-        \varphi_{FR} = \frac{v_x + v_y\cot\gamma + k\omega}{r_w},\
-        \varphi_{RL} = \frac{v_x + v_y\cot\gamma - k\omega}{r_w},\
-        \varphi_{RR} = \frac{v_x - v_y\cot\gamma + k\omega}{r_w}
+        \dot\varphi_{FL} = \frac{v_x - v_y\cot\gamma - k\omega}{r_w},\
+        \dot\varphi_{FR} = \frac{v_x + v_y\cot\gamma + k\omega}{r_w},\
+        \dot\varphi_{RL} = \frac{v_x + v_y\cot\gamma - k\omega}{r_w},\
+        \dot\varphi_{RR} = \frac{v_x - v_y\cot\gamma + k\omega}{r_w}
 
     with :math:`k = b + a\cot\gamma`; at :math:`\gamma = 45^\circ`, :math:`\cot\gamma = 1` and
     :math:`k = a + b`. Positive rates roll the wheel forward (+x).
@@ -311,11 +311,12 @@ def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.
     .. math::
 
         \begin{aligned}
-        v_x &= \tfrac{r_w}{4}(\varphi_{FL} + \varphi_{FR} + \varphi_{RL} + \varphi_{RR}),\\
-        v_y &= \tfrac{r_w\tan\gamma}{4}(-\varphi_{FL} + \varphi_{FR} + \varphi_{RL}
-               - \varphi_{RR}),\\
-        \omega &= \tfrac{r_w}{4k}(-\varphi_{FL} + \varphi_{FR} - \varphi_{RL}
-               + \varphi_{RR}).
+        v_x &= \tfrac{r_w}{4}(\dot\varphi_{FL} + \dot\varphi_{FR} + \dot\varphi_{RL}
+               + \dot\varphi_{RR}),\\
+        v_y &= \tfrac{r_w\tan\gamma}{4}(-\dot\varphi_{FL} + \dot\varphi_{FR} + \dot\varphi_{RL}
+               - \dot\varphi_{RR}),\\
+        \omega &= \tfrac{r_w}{4k}(-\dot\varphi_{FL} + \dot\varphi_{FR} - \dot\varphi_{RL}
+               + \dot\varphi_{RR}).
         \end{aligned}
 
     Exact (the inverse of :func:`inverse_kinematics`) when the rates are consistent, i.e. when
@@ -350,11 +351,12 @@ def fighting_component(wheel_rates: ArrayLike) -> float | NDArray[np.float64]:
     r"""How much of the wheel rates is the no-motion pattern (+1, +1, -1, -1), rad/s.
 
     Any four rates split uniquely into a part that moves the vehicle and
-    :math:`c\,(1, 1, -1, -1)` (FL, FR, RL, RR) with
+    :math:`\nu\,(1, 1, -1, -1)` (FL, FR, RL, RR) with
 
-    .. math:: c = \tfrac14(\varphi_{FL} + \varphi_{FR} - \varphi_{RL} - \varphi_{RR}).
+    .. math:: \nu = \tfrac14(\dot\varphi_{FL} + \dot\varphi_{FR} - \dot\varphi_{RL}
+              - \dot\varphi_{RR}).
 
-    A non-zero :math:`c` cannot be satisfied by rolling: the rollers must slip (and the wheels
+    A non-zero :math:`\nu` cannot be satisfied by rolling: the rollers must slip (and the wheels
     push against each other). The pattern is the same for every roller angle and geometry.
 
     Parameters
@@ -377,12 +379,12 @@ def fighting_component(wheel_rates: ArrayLike) -> float | NDArray[np.float64]:
 
 def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
                   geometry: MecanumGeometry) -> float | NDArray[np.float64]:
-    r"""The fastest wheel's rim speed :math:`r_w\max_i|\varphi_i|`, m/s, for a body twist.
+    r"""The fastest wheel's rim speed :math:`r_w\max_i|\dot\varphi_i|`, m/s, for a body twist.
 
     Every sign combination of the :math:`v_y` and :math:`\omega` terms occurs on one of the
     four wheels, so
 
-    .. math:: r_w \max_i |\varphi_i| = |v_x| + |v_y|\cot\gamma + k|\omega| .
+    .. math:: r_w \max_i |\dot\varphi_i| = |v_x| + |v_y|\cot\gamma + k|\omega| .
 
     This, not the body speed :math:`\sqrt{v_x^2+v_y^2}`, is what the motors limit.
 
@@ -533,8 +535,8 @@ def limit_speed(twist: Twist | ArrayLike, max_speed: float, geometry: MecanumGeo
 def desaturate(wheel_rates: ArrayLike, max_rate: float) -> np.ndarray:
     r"""Scale all four wheel rates together so that none exceeds ``max_rate`` in size.
 
-    .. math:: \varphi_i' = \varphi_i\,\min\left(1, \frac{\varphi_{max}}
-              {\max_j |\varphi_j|}\right)
+    .. math:: \dot\varphi_i' = \dot\varphi_i\,\min\left(1, \frac{\dot\varphi_{max}}
+              {\max_j |\dot\varphi_j|}\right)
 
     WPILib's ``MecanumDriveWheelSpeeds.desaturate``: the ratios of the wheel rates are kept,
     so the vehicle drives the same path (the same direction and curvature), only slower.
