@@ -152,14 +152,24 @@ def test_every_chapter_derives_in_sympy_and_checks_the_library(chapter):
                     "asserts that the library agrees")
 
 
+#: The book layer's modules: they draw and print, they hold no formula.
+BOOK_LAYER = ("animation", "display", "exercises", "style", "widgets")
+
+
 def formula_modules(root: Path = ROOT) -> list[str]:
-    """The modules the API reference documents (``book/api/*.md``), less the sandbox's and the
-    private ones: the formula modules a robot builder reads."""
-    names = set()
-    for page in (root / "book" / "api").glob("*.md"):
-        names |= set(re.findall(r"automodule::\s*(wheelkin[\w.]*)", page.read_text("utf-8")))
-    return sorted(n for n in names if not any(p.startswith("_") for p in n.split("."))
-                  and not n.startswith("wheelkin.sandbox"))
+    """The formula modules a robot builder reads: ``wheelkin._registry.FORMULA_MODULES`` where
+    the library keeps that list, else the modules the API reference documents
+    (``book/api/*.md``) less the sandbox's, the book layer's and the private ones."""
+    try:
+        from wheelkin._registry import FORMULA_MODULES
+    except ImportError:
+        names = set()
+        for page in (root / "book" / "api").glob("*.md"):
+            names |= set(re.findall(r"automodule::\s*(wheelkin[\w.]*)", page.read_text("utf-8")))
+        return sorted(n for n in names if not any(p.startswith("_") for p in n.split("."))
+                      and not n.startswith("wheelkin.sandbox")
+                      and n.split(".")[1] not in BOOK_LAYER)
+    return [f"wheelkin.{name}" for name in FORMULA_MODULES]
 
 
 def test_every_formula_function_has_a_worked_example():
