@@ -38,7 +38,7 @@ MATH = re.compile(r"\$\$(.+?)\$\$|\$(.+?)\$", re.S)
 #: A sentence in a source's voice: its notation is the source's, quoted.
 SOURCE_VOICE = re.compile(
     r"\{cite|README|firmware|document's|documents|the document|report's|the report|lab's|"
-    r"paper's|the paper|simulator's|the simulator|\bits\b|\btheir\b|\bwrites\b|\bcalls\b",
+    r"paper's|the paper|simulator's|the simulator|\btheir\b|\bwrites\b|\bcalls\b",
     re.IGNORECASE)
 #: Words that do not name anything: a noun phrase stops at them.
 STOP = frozenset("""a an the of by to with and or for at in on is are was be its their this that
@@ -51,7 +51,8 @@ equals equal let has have had do does did get gets see shows show find finds mea
 number how what why wheel's sign could would should can may might must will larger smaller
 longer shorter wider narrower positive negative signed small large tiny new true wrong example
 measures needs asks brings push pushes helps changes costs moves double halve doubles halves
-drives steers turned doubling halving chapter's""".split())
+drives steers turned doubling halving chapter's along across symbol symbols letter letters
+notation""".split())
 #: What may stand right before a noun phrase that names a symbol ("the half track $b$").
 DETERMINERS = frozenset("a an the its our each half".split())
 WORD = re.compile(r"[A-Za-z][A-Za-z'-]*")
@@ -293,6 +294,7 @@ def test_the_guard_catches_the_conflicts_issue_21_found():
         "track $d$ is 0.06 m.": "half track",
         "The wheel radius $r_w$ is 0.04 m.": "r_w",
         "A controller sends the steering command $c$ to the rover.": "$\\mathbf c",
+        "Its wheels turn at the lap time $R$ of the circuit.": "$R$",  # "its" is not a source
     }
     for text, expected in planted.items():
         found = meaning_problems(text, data)
@@ -300,7 +302,9 @@ def test_the_guard_catches_the_conflicts_issue_21_found():
     quiet = ["The lap time $T$ and the radius $R_c$ of the circle.",
              "The half track $b$ and the half wheelbase $a$ of the vehicle.",
              "The document's angle $\\theta$ is the heading change.",  # a source's voice
-             "| $\\gamma$ | angle between a floor roller's axis and the wheel's axle |"]
+             "| $\\gamma$ | angle between a floor roller's axis and the wheel's axle |",
+             "Each input $u_i$ is a speed or a rate.",  # plain u: not the roller's bold axis
+             "The symbols $W$, $L$ and $r$ of the vehicle."]
     for text in quiet:
         assert meaning_problems(text, data) == [], (text, meaning_problems(text, data))
 
