@@ -410,13 +410,13 @@ def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: 
     wheel force that gives the body the acceleration :math:`(a_x, a_y)` (body frame, any
     velocity) is :math:`\tfrac m4(|a_x|/\sin\gamma + |a_y|/\cos\gamma)`, so
 
-    .. math:: u = \frac{|a_x|/\sin\gamma + |a_y|/\cos\gamma}{\mu g} \le 1 .
+    .. math:: U = \frac{|a_x|/\sin\gamma + |a_y|/\cos\gamma}{\mu g} \le 1 .
 
     At 45 degrees: :math:`|a_x| + |a_y| \le \mu g/\sqrt2`, a diamond, like the speed limit of
     :func:`max_rim_speed`. Straight ahead or sideways a mecanum vehicle can use only
     :math:`1/\sqrt2` of the grip of ordinary wheels, diagonally only half (two wheels push,
-    the other two cannot). A circle of radius :math:`R` at speed :math:`v` needs
-    :math:`v^2/R` towards the centre: sideways in the body with the heading rotating, in every
+    the other two cannot). A circle of radius :math:`R_c` at speed :math:`v` needs
+    :math:`v^2/R_c` towards the centre: sideways in the body with the heading rotating, in every
     body direction with the heading held.
 
     Parameters
