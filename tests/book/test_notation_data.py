@@ -69,9 +69,11 @@ def checked_rows(data: dict | None = None) -> list[dict]:
 
 def token_pattern(token: str) -> re.Pattern:
     """A token as a whole symbol inside math: not a part of a command or a longer name, not a
-    subscript or an exponent, not followed by a subscript (``T_w`` is another symbol)."""
+    subscript or an exponent, not followed by a subscript (``T_w`` is another symbol), and a
+    plain letter not in bold (``\\mathbf u_i``, a roller's axis, is not ``u_i``, an input)."""
     body = re.escape(token)
-    return re.compile(rf"(?<![\\A-Za-z_^]){body}(?![A-Za-z_])")
+    bold = "" if token.startswith("\\") else r"(?<!\\mathbf )(?<!\\mathbf\{)(?<!\\boldsymbol\{)"
+    return re.compile(rf"(?<![\\A-Za-z_^]){bold}{body}(?![A-Za-z_])")
 
 
 def _math(text: str):
@@ -295,6 +297,9 @@ def test_the_guard_catches_the_conflicts_issue_21_found():
         "The wheel radius $r_w$ is 0.04 m.": "r_w",
         "A controller sends the steering command $c$ to the rover.": "$\\mathbf c",
         "Its wheels turn at the lap time $R$ of the circuit.": "$R$",  # "its" is not a source
+        # since chapter 10: q is the configuration, eta the integrating factor
+        "The rover turns by the steering command $q$ from -100 to 100.": "$q$",
+        "The grip share $\\eta$ stays below one on a dry floor.": "$\\eta(q)$",
     }
     for text, expected in planted.items():
         found = meaning_problems(text, data)
@@ -304,7 +309,9 @@ def test_the_guard_catches_the_conflicts_issue_21_found():
              "The document's angle $\\theta$ is the heading change.",  # a source's voice
              "| $\\gamma$ | angle between a floor roller's axis and the wheel's axle |",
              "Each input $u_i$ is a speed or a rate.",  # plain u: not the roller's bold axis
-             "The symbols $W$, $L$ and $r$ of the vehicle."]
+             "The symbols $W$, $L$ and $r$ of the vehicle.",
+             "The floor roller's axis $\\mathbf u_i$ and the input $u_i$ of the field.",
+             "The share of the grip $U$ and the configuration $q$ of the car."]
     for text in quiet:
         assert meaning_problems(text, data) == [], (text, meaning_problems(text, data))
 
