@@ -40,8 +40,9 @@ PAGES = [ROOT / "book" / "intro.md", ROOT / "book" / "how_to_use.md"]
 CLAIM = re.compile(
     r"\b(?:derived|derives|checked|tested|asserts?|fails?|re-?run|re-?executes?|offline|"
     r"internet|network|without Python|exactly what|deterministic|never (?:raises|shows)|"
-    r"at least three|one thing|runs? as a test|every (?:figure|animation|function|symbol|"
-    r"notebook|page|exercise|result|chapter|number|equation))\b", re.IGNORECASE)
+    r"at least three|one thing|runs? as a test|nothing leaves|any value|every (?:figure|"
+    r"animation|function|symbol|notebook|page|exercise|result|chapter|number|equation|panel|"
+    r"control|code cell))\b", re.IGNORECASE)
 FOOTNOTE_REF = re.compile(r"\[\^([\w-]+)\](?!:)")
 FOOTNOTE_DEF = re.compile(r"^\[\^([\w-]+)\]:\s*(.+?)(?=^\[\^|^\S|\Z)", re.M | re.S)
 NODE_ID = re.compile(r"(tests/[\w/]+\.py)(?:::(\w+))?")
@@ -232,6 +233,13 @@ def test_the_guard_flags_a_test_that_does_not_exist(tmp_path):
     found = claim_problems(page, root)
     assert any("test_gone: no such test" in p for p in found)
     assert any("`make offline`: no such target" in p for p in found)
+
+
+def test_the_guard_flags_a_live_page_claim_without_a_test(tmp_path):
+    root = _tree(tmp_path)
+    page = ("Every panel takes any value of every control.\n\n"
+            "Nothing leaves your computer.\n")
+    assert len([p for p in claim_problems(page, root) if "names no test" in p]) == 2
 
 
 def test_the_guard_flags_a_footnote_without_a_test(tmp_path):
