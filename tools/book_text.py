@@ -20,7 +20,8 @@ from functools import cache
 from pathlib import Path
 
 import nbformat
-from book_pages import ROOT, toc_files
+
+from tools.book_pages import ROOT, toc_files
 
 #: HTML outputs larger than this are animations or widgets, not text.
 MAX_HTML_CHARS = 20_000

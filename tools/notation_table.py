@@ -3,9 +3,9 @@
 
 Usage::
 
-    python tools/notation_table.py           # print the tables
-    python tools/notation_table.py --write   # write them into book/notation.md
-    python tools/notation_table.py --check   # exit 1 if book/notation.md is out of date
+    python -m tools.notation_table           # print the tables
+    python -m tools.notation_table --write   # write them into book/notation.md
+    python -m tools.notation_table --check   # exit 1 if book/notation.md is out of date
 
 The tables sit in ``book/notation.md`` between the lines ``% notation: begin`` and
 ``% notation: end`` (MyST comments); everything else on the page is prose written by hand. A row's
@@ -90,7 +90,7 @@ def main(argv: list[str] | None = None) -> int:
     new = page_with_tables(page, data)
     if args.check:
         if new != page:
-            print("book/notation.md is out of date: run python tools/notation_table.py --write",
+            print("book/notation.md is out of date: run python -m tools.notation_table --write",
                   file=sys.stderr)
             return 1
         return 0

@@ -23,16 +23,15 @@ import ast
 import importlib
 import inspect
 import re
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
+from tools.book_pages import NON_CHAPTER_NOTEBOOKS, chapter_of
+from tools.book_text import chapter_pages
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import NON_CHAPTER_NOTEBOOKS, chapter_of  # noqa: E402
-from book_text import chapter_pages  # noqa: E402
 
 PAGES = [ROOT / "book" / "intro.md", ROOT / "book" / "how_to_use.md"]
 

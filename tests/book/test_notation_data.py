@@ -23,16 +23,15 @@ conflicts issue 21 found on planted text at the end of this file.
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 import pytest
 import yaml
 
+from tools.book_text import chapter_pages, page_markdown, prose, read_notebook
+from tools.notation_table import DATA, PAGE, load, page_with_tables
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_text import chapter_pages, page_markdown, prose, read_notebook  # noqa: E402
-from notation_table import DATA, PAGE, load, page_with_tables  # noqa: E402
 
 MATH = re.compile(r"\$\$(.+?)\$\$|\$(.+?)\$", re.S)
 #: A sentence in a source's voice: its notation is the source's, quoted.
@@ -254,7 +253,7 @@ def test_the_notation_page_is_made_from_the_data():
     page = PAGE.read_text(encoding="utf-8")
     assert page_with_tables(page, load()) == page, (
         "book/notation.md's tables differ from book/notation.yml: run "
-        "`.venv/bin/python tools/notation_table.py --write`")
+        "`.venv/bin/python -m tools.notation_table --write`")
 
 
 def test_every_introduced_chapter_exists():

@@ -27,15 +27,12 @@ from __future__ import annotations
 
 import math
 import re
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_text import (  # noqa: E402
+from tools.book_text import (
     chapter_pages,
     linked_pages,
     output_text,
@@ -43,6 +40,8 @@ from book_text import (  # noqa: E402
     page_outputs,
     prose,
 )
+
+ROOT = Path(__file__).resolve().parents[2]
 
 #: The sources' printed values, quoted as such in the prose. Each is printed by the source
 #: named (the documents in the book's references); the prose says whose value it is.

@@ -21,16 +21,15 @@ guard is shown to fail on planted notebooks at the end of this file.
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 import nbformat
 import pytest
 
+from tools.book_text import output_text, tags
+from tools.student_edition import student_notebook, toc_notebooks
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_text import output_text, tags  # noqa: E402
-from student_edition import student_notebook, toc_notebooks  # noqa: E402
 
 #: An exercise's heading or bold lead, at the start of a line.
 LEAD = re.compile(r"^(?:#{1,4}[ \t]+Exercise\b[^\n]*|\*\*(?:Exercise\b|\d+(?:[.:)]| \())[^\n]*)",
