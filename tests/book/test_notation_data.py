@@ -69,9 +69,11 @@ def checked_rows(data: dict | None = None) -> list[dict]:
 def token_pattern(token: str) -> re.Pattern:
     """A token as a whole symbol inside math: not a part of a command or a longer name, not a
     subscript or an exponent, not followed by a subscript (``T_w`` is another symbol), and a
-    plain letter not in bold (``\\mathbf u_i``, a roller's axis, is not ``u_i``, an input)."""
+    plain letter not in bold (``\\mathbf u_i``, a roller's axis, is not ``u_i``, an input) nor
+    upright (``\\mathrm{m/s}`` is a unit, not a mass)."""
     body = re.escape(token)
-    bold = "" if token.startswith("\\") else r"(?<!\\mathbf )(?<!\\mathbf\{)(?<!\\boldsymbol\{)"
+    bold = "" if token.startswith("\\") else (r"(?<!\\mathbf )(?<!\\mathbf\{)(?<!\\boldsymbol\{)"
+                                              r"(?<!\\mathrm\{)(?<!\\text\{)")  # a unit: m/s
     return re.compile(rf"(?<![\\A-Za-z_^]){bold}{body}(?![A-Za-z_])")
 
 
@@ -299,6 +301,11 @@ def test_the_guard_catches_the_conflicts_issue_21_found():
         # since chapter 10: q is the configuration, eta the integrating factor
         "The rover turns by the steering command $q$ from -100 to 100.": "$q$",
         "The grip share $\\eta$ stays below one on a dry floor.": "$\\eta(q)$",
+        # issue 21's k, V, tau and m: one meaning each
+        "The Euler step $k$ has length $h$.": "$k = b",
+        "The centre of mass moves at the rate $V$ along the path.": "$V$",
+        "The update's duration $\\tau$ does not matter.": "$\\tau$",
+        "A vehicle has the number of fields $m$ of its constraints.": "$m$",
     }
     for text, expected in planted.items():
         found = meaning_problems(text, data)
@@ -310,7 +317,9 @@ def test_the_guard_catches_the_conflicts_issue_21_found():
              "Each input $u_i$ is a speed or a rate.",  # plain u: not the roller's bold axis
              "The symbols $W$, $L$ and $r$ of the vehicle.",
              "The floor roller's axis $\\mathbf u_i$ and the input $u_i$ of the field.",
-             "The share of the grip $U$ and the configuration $q$ of the car."]
+             "The share of the grip $U$ and the configuration $q$ of the car.",
+             "The lever arm $k$, the wheel noise $k_w$ and the rim speed $V$.",
+             "The motor lag $\\tau$ and the mass $m$ at $0.5~\\mathrm{m/s}$."]
     for text in quiet:
         assert meaning_problems(text, data) == [], (text, meaning_problems(text, data))
 
