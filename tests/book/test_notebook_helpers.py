@@ -80,7 +80,7 @@ def duplicated_helpers(definitions: dict) -> dict[str, list[str]]:
 
 def test_the_notebooks_are_found_and_read():
     assert len(NOTEBOOKS) >= 50
-    found = defined_functions(ROOT / "notebooks" / "01_conventions" / "04_units.ipynb")
+    found = defined_functions(ROOT / "notebooks" / "01_conventions" / "05_units.ipynb")
     # the exercise rover_radius: its stub, then its (folded) solution
     assert [(cell, tags) for name, cell, tags in found if name == "rover_radius"] == [
         (13, frozenset({"exercise"})), (14, frozenset({"solution", "hide-input"}))]
