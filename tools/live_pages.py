@@ -132,7 +132,9 @@ def view_html(info: dict, base: str, root: str, uid: str) -> str:
     fixed = ", ".join(f"{f['label']} {f['value']}" for f in info["fixed"])
     shape = " × ".join(str(len(a["values"])) for a in info["axes"])
     names = " and ".join(a["label"] for a in info["axes"])
-    note = (f"Precomputed at {shape} = {info['count']} positions of {names}"
+    # one axis: "21 positions"; several: "21 × 5 = 105 positions"
+    count = f"{shape} = {info['count']}" if len(info["axes"]) > 1 else str(info["count"])
+    note = (f"Precomputed at {count} positions of {names}"
             + (f" (the other controls at their defaults: {fixed})" if fixed else "")
             + f'. For any value, <a href="{root}{HOW_TO_USE}">run the panel live</a>.')
     first = "-".join(str(i) for i in start) + ".png"

@@ -139,3 +139,22 @@ def test_every_panel_cell_names_its_panel_and_every_panel_is_shown():
         shown.add(name)
     assert not unnamed, f"panel cells without wheelkin.panel metadata: {unnamed}"
     assert shown == set(GRIDS), f"panels no page shows: {sorted(set(GRIDS) - shown)}"
+
+
+def test_the_note_counts_positions_without_a_one_axis_product():
+    """One slider: "21 positions"; two: "21 × 5 = 105 positions" (never "21 = 21")."""
+    from tools.live_pages import view_html
+
+    def axis(name, n):
+        return {"name": name, "label": name, "kind": "slider", "start": 0,
+                "values": [str(v) for v in range(n)]}
+
+    def note(axes, count):
+        info = {"axes": axes, "fixed": [], "count": count, "panel": "p.q", "title": "T",
+                "width": 10, "height": 10}
+        return view_html(info, "b/", "../", "u")
+
+    one = note([axis("command", 21)], 21)
+    assert "Precomputed at 21 positions of command." in one and "21 = 21" not in one
+    two = note([axis("command", 21), axis("speed", 5)], 105)
+    assert "Precomputed at 21 × 5 = 105 positions of command and speed." in two
