@@ -14,9 +14,11 @@ mecanum   feet, ft/s; body X right, Y forward; world  :func:`mecanum_doc_twist_t
           X right (east), Y up (north); headings      :func:`ours_to_mecanum_doc_twist`,
           clockwise from +Y; omega counter-clockwise  :func:`mecanum_doc_heading_to_ours`,
           positive (so the heading rate is -omega)    :func:`mecanum_doc_pose_to_ours` ...
-firmware  mm, mrad; world X right, Y forward (the     :func:`firmware_pose_to_ours`,
-          start heading); theta counter-clockwise     :func:`ours_to_firmware_pose`
-          from +Y: dX = -d sin(theta), dY = d cos
+firmware  its architecture notes: mm, mrad; world   :func:`firmware_pose_to_ours`,
+          X right, Y forward (the start heading);     :func:`ours_to_firmware_pose`
+          theta counter-clockwise from +Y: dX = -d
+          sin(theta), dY = d cos (its code since
+          2023: ours in mm, mrad; see the warning)
 lab       metres; x east, y north, theta counter-     :func:`lab_pose_to_ours`,
           clockwise from +x: the same as ours         :func:`ours_to_lab_pose`
 ========  ==========================================  =========================================
@@ -354,16 +356,25 @@ def ours_to_mecanum_doc_pose(pose: Pose | ArrayLike) -> MecanumDocPose | NDArray
 
 def firmware_pose_to_ours(X_mm: ArrayLike, Y_mm: ArrayLike,
                           theta: ArrayLike) -> Pose | NDArray[np.float64]:
-    r"""The Radon Ulzer firmware's pose (mm, mm, rad) as ours (m, m, rad).
+    r"""A pose in the Radon Ulzer notes' convention (mm, mm, rad) as ours (m, m, rad).
 
     .. math:: x = Y / 1000,\quad y = -X / 1000,\quad \theta = \theta_{fw}
 
-    The firmware :cite:`radonulzer_architecture` puts Y along the start heading and X to its
-    right, and measures its orientation counter-clockwise from +Y, so a step :math:`d` moves it
-    by :math:`dX = -d \sin\theta`, :math:`dY = d \cos\theta`. Turning that frame so that its
-    +Y becomes our +x leaves the heading angle unchanged; it is passed through as given (not
-    wrapped: the firmware keeps it in :math:`(-2\pi, 2\pi)`). The firmware stores the
-    orientation in mrad: convert with ``wheelkin.units.to_si(theta_mrad, "mrad")`` first.
+    The firmware's architecture notes :cite:`radonulzer_architecture` put Y along the start
+    heading and X to its right, and measure the orientation counter-clockwise from +Y, so a
+    step :math:`d` moves it by :math:`dX = -d \sin\theta`, :math:`dY = d \cos\theta`.
+    Turning that frame so that its +Y becomes our +x leaves the heading angle unchanged; it
+    is passed through as given (not wrapped: the notes keep it in :math:`(-2\pi, 2\pi)`).
+    The firmware stores the orientation in mrad: convert with
+    ``wheelkin.units.to_si(theta_mrad, "mrad")`` first.
+
+    .. warning::
+       This is the notes' convention, not the current firmware code's. Since March 2023
+       (commit b6de7d1 of BlueAndi/RadonUlzer, "Following the REP-103") the firmware's
+       odometry puts X along the start heading and Y to its left, with the orientation
+       counter-clockwise from +X: our frame in mm and mrad. Convert a pose read off that
+       firmware with ``units.to_si(X, "mm")``, ``units.to_si(Y, "mm")`` and
+       ``units.to_si(orientation, "mrad")``, not with this function.
 
     Parameters
     ----------
