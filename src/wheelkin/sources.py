@@ -14,7 +14,7 @@ mecanum   feet, ft/s; body X right, Y forward; world  :func:`mecanum_doc_twist_t
           X right (east), Y up (north); headings      :func:`ours_to_mecanum_doc_twist`,
           clockwise from +Y; omega counter-clockwise  :func:`mecanum_doc_heading_to_ours`,
           positive (so the heading rate is -omega)    :func:`mecanum_doc_pose_to_ours` ...
-firmware  its architecture notes: mm, mrad; world   :func:`firmware_pose_to_ours`,
+firmware  its architecture notes: mm, mrad; world     :func:`firmware_pose_to_ours`,
           X right, Y forward (the start heading);     :func:`ours_to_firmware_pose`
           theta counter-clockwise from +Y: dX = -d
           sin(theta), dY = d cos (its code since
