@@ -503,6 +503,8 @@ def limit_speed(twist: Twist | ArrayLike, max_speed: float, geometry: MecanumGeo
     (0.762, Twist(vx=4.572, vy=0.0, omega=0.0))
     >>> print(out.reason)
     body speed 6.000 m/s exceeds the limit 4.572 m/s: scaled by 0.762 (same path, slower)
+    >>> print(limit_speed((3.0, 0.0, 0.0), 4.572).reason)
+    within the limit: body speed 3.000 m/s <= 4.572 m/s
     >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> print(limit_speed((0.0, 0.0, 20.0), 4.572, g, refuse=True).reason)
     fastest wheel (FL) rim speed 7.000 m/s exceeds the limit 4.572 m/s: refused (not driven)
@@ -521,9 +523,9 @@ def limit_speed(twist: Twist | ArrayLike, max_speed: float, geometry: MecanumGeo
         checks.append((f"fastest wheel ({fastest}) rim speed", rim))
     what, speed = max(checks, key=lambda c: c[1])
     if speed <= vmax:
-        names = " and ".join(c[0] for c in checks)
+        each = ", ".join(f"{name} {value:.3f} m/s" for name, value in checks)
         return SpeedLimit(Twist(vx, vy, w), 1.0,
-                          f"within the limit: {names} {speed:.3f} m/s <= {vmax:.3f} m/s")
+                          f"within the limit: {each} <= {vmax:.3f} m/s")
     head = f"{what} {speed:.3f} m/s exceeds the limit {vmax:.3f} m/s"
     if refuse:
         return SpeedLimit(Twist(0.0, 0.0, 0.0), 0.0, f"{head}: refused (not driven)")

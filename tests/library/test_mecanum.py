@@ -228,6 +228,20 @@ def test_limit_speed_wheel_rule_is_stricter_on_diagonals_and_spins():
     assert limit_speed(frames.Twist(1.0, 0.0, 0.0), 4.572).scale == 1.0
 
 
+def test_limit_speed_within_names_each_speed():
+    """A twist within both limits: the reason gives the body speed and the fastest rim speed
+    each with its own value (hand calculation: a 1.5 m circle in 3.6 s with the heading held,
+    at the moment it moves along the body's diagonal: body speed 2 pi 1.5 / 3.6 m/s, and at
+    45 deg the fastest rim moves at |vx| + |vy| = sqrt(2) times that)."""
+    speed = 2 * math.pi * 1.5 / 3.6
+    twist = (speed / math.sqrt(2), speed / math.sqrt(2), 0.0)
+    out = limit_speed(twist, DOCUMENT_MAX_SPEED, EXAMPLE_GEOMETRY)
+    assert out.scale == 1.0
+    assert f"body speed {speed:.3f} m/s," in out.reason
+    assert f"rim speed {math.sqrt(2) * speed:.3f} m/s <= 4.572 m/s" in out.reason
+    assert "2.618" in out.reason and "3.702" in out.reason
+
+
 @settings(max_examples=40, deadline=None)
 @given(finite, finite, finite)
 def test_limit_speed_output_never_exceeds_either_limit(vx, vy, w):
