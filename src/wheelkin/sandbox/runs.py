@@ -179,7 +179,8 @@ def drive_twist(
     r"""Drive one vehicle open loop through a twist schedule; its recorded run.
 
     At every step of the world the vehicle is commanded the schedule's twist at the middle of
-    the step (the world calls its controller at ``world.time + dt/2``), scaled by :math:`\min(1, t/\text{ramp})` when ``ramp`` > 0 (a smooth start).
+    the step (the world calls its controller at ``world.time + dt/2``), scaled by
+    :math:`\min(1, t/\text{ramp})` when ``ramp`` > 0 (a smooth start).
 
     Parameters
     ----------
