@@ -162,6 +162,9 @@ MUTANTS = [
      "[-1.0, 0.0, -kappa], [-1.0, 0.0, kappa]]", "[-1.0, 0.0, kappa], [-1.0, 0.0, -kappa]]"),
     ("nonholonomic", "nonholonomic", "parking shift: 4 sin^2 instead of 8 sin^2",
      "out = 8.0 * half * half / kappa", "out = 4.0 * half * half / kappa"),
+    ("nonholonomic", "nonholonomic", "wheel angle fields: the world-to-body rotation",
+     "body_to_world = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])",
+     "body_to_world = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])"),
 ]
 
 # The contact solver (sandbox/contact.py): its solver core only (the stick shortcut, the

@@ -73,6 +73,7 @@ __all__ = [
     "unicycle_drive",
     "unicycle_fields",
     "unicycle_turn",
+    "wheel_angle_fields",
 ]
 
 #: A vector field: a configuration (shape (n,)) to a velocity of the configuration (n,).
@@ -439,6 +440,68 @@ def car_lock_fields(pose: ArrayLike, max_curvature: float) -> NDArray[np.float64
     left = np.stack([c, s, k], axis=-1)
     right = np.stack([c, s, -k], axis=-1)
     return np.stack([left, right], axis=-1) + 0.0
+
+
+def wheel_angle_fields(configuration: ArrayLike, wheels: Sequence[unified.WheelConstraint]
+                       ) -> NDArray[np.float64]:
+    r"""A vehicle's vector fields with its wheel angles in the configuration,
+    :math:`q = (x, y, \theta, \varphi_1, \varphi_2, \dots)`, one wheel angle per wheel.
+
+    Each column belongs to one twist :math:`\xi_j` of the orthonormal basis of the twists the
+    wheels allow without sliding sideways (:func:`wheelkin.unified.admissible_twists`, at the
+    wheels' present steering, held): the pose moves with :math:`\xi_j` turned into the world
+    frame and each wheel turns at the rate its rolling constraint sets,
+
+    .. math::
+        \mathbf f_j(q) = \bigl(R(\theta)\,\xi_j,\ \ J_1\,\xi_j / r\bigr),\qquad
+        \dot\varphi_i = \frac{J_{1,i}\,\xi_j}{r_i}
+
+    (the rates of :func:`wheelkin.unified.wheel_rates`). Every field satisfies all the
+    wheels' constraints, rolling and no side slip (a Swedish wheel rolls on its rollers).
+    With the wheel angles in :math:`q` the rolling constraints join :math:`A(q)`, and
+    Frobenius's theorem counts how many combinations of them integrate: the dimension of
+    :math:`q` less the rank of the fields and their brackets (:func:`bracket_ranks`). For
+    the differential drive that is one, :math:`W\theta - r(\varphi_R - \varphi_L)`
+    (:func:`diff_drive_constraints`).
+
+    Parameters
+    ----------
+    configuration : array_like, shape (3 + number of wheels,)
+        :math:`(x, y, \theta, \varphi_1, \varphi_2, \dots)`, m, m, rad, rad, ...; the wheel
+        angles in the order of ``wheels`` (only :math:`\theta` enters).
+    wheels : sequence of WheelConstraint
+        The vehicle's wheels, fixed, steered (at their present steering) or Swedish; no
+        caster (its swivel angle would be one more coordinate).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3 + number of wheels, m)
+        One column per admissible twist, per unit of it (m/s or rad/s); m is the degree of
+        mobility :math:`\delta_m`.
+
+    Examples
+    --------
+    A differential drive (track 0.3 m, wheels of radius 0.05 m), q = (x, y, θ, φ_L, φ_R):
+    driving turns both wheels alike, turning on the spot turns them against each other:
+
+    >>> wheels = unified.diff_drive_wheels(0.3, 0.05, caster=False)
+    >>> wheel_angle_fields([0.0, 0.0, 0.0, 0.0, 0.0], wheels).round(12) + 0.0
+    array([[ 1.,  0.],
+           [ 0.,  0.],
+           [ 0.,  1.],
+           [20., -3.],
+           [20.,  3.]])
+    """
+    basis = unified.admissible_twists(wheels)  # (3, m); validates the wheels
+    casters = [w.name for w in wheels if w.kind == "caster"]
+    if casters:
+        raise ValueError(f"wheels must not include a caster (its swivel angle would be one "
+                         f"more coordinate of q): got the caster(s) {casters}")
+    q = _vector("configuration", configuration, 3 + len(wheels))
+    c, s = math.cos(q[2]), math.sin(q[2])
+    body_to_world = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    rates = unified.wheel_rates(wheels, basis.T)  # (m, k)
+    return np.vstack([body_to_world @ basis, rates.T]) + 0.0
 
 
 # --------------------------------------------------------------------------------------------

@@ -214,6 +214,7 @@ OVERRIDES = {
     "nonholonomic.car_fields": {"configuration": (0.1, 0.2, 0.3, 0.2)},
     "nonholonomic.diff_drive_constraints": {"configuration": (0.1, 0.2, 0.3, 1.0, 2.0)},
     "nonholonomic.pfaffian_matrix": {"pose": (0.1, 0.2, 0.3)},
+    "nonholonomic.wheel_angle_fields": {"configuration": (0.1, 0.2, 0.3, 1.0, 2.0, 3.0, 4.0)},
 }
 
 

@@ -61,15 +61,21 @@ def test_unicycle_and_car_rows_from_contact_velocities():
                                    car(t, delta, L), atol=1e-13)
 
 
-def test_diff_drive_rows_from_contact_velocities():
-    rng = np.random.default_rng(2)
+def _diff_drive_rows():
+    """The differential drive's three constraint rows in q = (x, y, theta, phi_L, phi_R),
+    derived in sympy from its contact velocities, as a function of (theta, W, r)."""
     xd, yd, thd, pld, prd = sp.symbols("xd yd thd pld prd", real=True)
     rates = (xd, yd, thd, pld, prd)
     forward = sp.Matrix([sp.cos(th), sp.sin(th)])
     rows = [_row(_lateral(th).dot(_contact_velocity(0, 0, rates[:3])), rates),
             _row(forward.dot(_contact_velocity(0, Ws / 2, rates[:3])) - rs * pld, rates),
             _row(forward.dot(_contact_velocity(0, -Ws / 2, rates[:3])) - rs * prd, rates)]
-    f = sp.lambdify((th, Ws, rs), rows)
+    return sp.lambdify((th, Ws, rs), rows)
+
+
+def test_diff_drive_rows_from_contact_velocities():
+    rng = np.random.default_rng(2)
+    f = _diff_drive_rows()
     for _ in range(100):
         t, W, r = rng.uniform(-4, 4), rng.uniform(0.05, 2), rng.uniform(0.01, 0.5)
         got = nh.diff_drive_constraints([0.3, -0.2, t, 1.0, 2.0], W, r)
@@ -340,6 +346,93 @@ def test_bracket_ranks_of_the_vehicles():
     assert nh.bracket_ranks(planar, pose, depth=4).tolist() == [2, 2, 2, 2]
 
 
+# ------------------------------------------------------------------ wheel angles: Frobenius
+
+MECANUM = mecanum.MecanumGeometry(half_wheelbase=0.2, half_track=0.15, wheel_radius=0.05)
+
+
+def _columns(fields_of, wheels):
+    return [lambda q, j=j: fields_of(q, wheels)[:, j]
+            for j in range(fields_of(np.zeros(3 + len(wheels)), wheels).shape[1])]
+
+
+def test_wheel_angle_fields_of_the_diff_drive_from_its_contact_velocities():
+    """The fields satisfy the five-variable constraints derived in sympy from the wheels'
+    contact velocities, and are the hand-written drive and turn columns."""
+    rng = np.random.default_rng(8)
+    constraints = _diff_drive_rows()
+    for _ in range(50):
+        t, W, r = rng.uniform(-4, 4), rng.uniform(0.05, 2), rng.uniform(0.01, 0.5)
+        q = [*rng.normal(size=2), t, *rng.normal(size=2)]
+        got = nh.wheel_angle_fields(q, unified.diff_drive_wheels(W, r, caster=False))
+        hand = np.array([[math.cos(t), 0.0], [math.sin(t), 0.0], [0.0, 1.0],
+                         [1 / r, -W / (2 * r)], [1 / r, W / (2 * r)]])
+        np.testing.assert_allclose(got, hand, atol=1e-12)
+        np.testing.assert_allclose(np.array(constraints(t, W, r), dtype=float) @ got, 0.0,
+                                   atol=1e-12)
+
+
+def test_wheel_angle_fields_of_the_mecanum_platform_turn_its_wheels_as_its_kinematics():
+    t = 0.9
+    got = nh.wheel_angle_fields([1.0, -2.0, t, 0.1, 0.2, 0.3, 0.4],
+                                unified.mecanum_wheels(MECANUM))
+    rotation = np.array([[math.cos(t), -math.sin(t), 0.0], [math.sin(t), math.cos(t), 0.0],
+                         [0.0, 0.0, 1.0]])
+    np.testing.assert_allclose(got[:3], rotation, atol=1e-14)  # forward, sideways, turn
+    for j, twist in enumerate(np.eye(3)):
+        np.testing.assert_allclose(got[3:, j], mecanum.inverse_kinematics(*twist, MECANUM),
+                                   atol=1e-12)
+
+
+def test_frobenius_counts_the_holonomic_combinations():
+    """Rank of fields and brackets against the dimension of q: the differential drive with its
+    wheel angles keeps one function constant (W theta - r (phi_R - phi_L)), the mecanum
+    platform two (a diagonal pair's angle difference against the heading), the skid steer six;
+    each such function is constant along any sequence of flows, found here by hand."""
+    W, r = 0.3, 0.05
+    diff = unified.diff_drive_wheels(W, r, caster=False)
+    wheels = unified.mecanum_wheels(MECANUM)
+    skid = unified.skid_steer_wheels(half_wheelbase=0.1, half_track=0.12, wheel_radius=0.04)
+    q5, q7 = [0.1, 0.2, 0.3, 0.4, 0.5], [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7]
+    assert nh.bracket_ranks(_columns(nh.wheel_angle_fields, diff), q5, depth=4).tolist() == \
+        [2, 3, 4, 4]
+    assert nh.bracket_ranks(_columns(nh.wheel_angle_fields, wheels), q7).tolist() == [3, 5, 5]
+    assert nh.bracket_ranks(_columns(nh.wheel_angle_fields, skid), q7).tolist() == [1, 1, 1]
+    k = MECANUM.half_wheelbase + MECANUM.half_track  # the rotation lever at 45 degrees
+    rm = MECANUM.wheel_radius
+    conserved = {  # q = (x, y, theta, phi_L, phi_R) and (x, y, theta, FL, FR, RL, RR)
+        "diff": (diff, q5, [lambda q: W * q[2] - r * (q[4] - q[3])]),
+        "mecanum": (wheels, q7, [lambda q: rm * (q[3] - q[6]) + 2 * k * q[2],
+                                 lambda q: rm * (q[4] - q[5]) - 2 * k * q[2]]),
+    }
+    rng = np.random.default_rng(9)
+    for vehicle, start, functions in conserved.values():
+        fields = _columns(nh.wheel_angle_fields, vehicle)
+        q = np.array(start, dtype=float)
+        for _ in range(8):
+            q = nh.flow(fields[rng.integers(len(fields))], q, rng.uniform(-0.5, 0.5), steps=20)
+        for function in functions:
+            assert math.isclose(function(q), function(start), abs_tol=1e-12)
+        assert np.linalg.norm(q - start) > 0.1  # it did move
+
+
+def test_a_closed_loop_of_the_mecanum_chassis_can_leave_its_wheels_turned():
+    """Holonomic in (x, y, theta), not with its wheel angles: forward, turn, back, turn back,
+    then a straight move home leaves the chassis where it was and the wheels turned."""
+    wheels = unified.mecanum_wheels(MECANUM)
+    forward, sideways, turn = _columns(nh.wheel_angle_fields, wheels)
+    start = np.zeros(7)
+    q = nh.flow(forward, start, 0.3)
+    q = nh.flow(turn, q, 0.5)
+    q = nh.flow(forward, q, -0.3)
+    q = nh.flow(turn, q, -0.5)
+    home = -q[:2]  # heading 0 again: body and world axes agree
+    np.testing.assert_allclose(q[2], 0.0, atol=1e-12)
+    q = nh.flow(lambda p: home[0] * forward(p) + home[1] * sideways(p), q, 1.0)
+    np.testing.assert_allclose(q[:3], 0.0, atol=1e-12)
+    assert np.abs(q[3:]).max() > 0.5  # rad: the wheels did not come back
+
+
 # ------------------------------------------------------------------ bad input
 
 def _left(p):
@@ -391,6 +484,15 @@ BAD = [
     (lambda: nh.parallel_parking([0, 0, 0], math.inf, 1.0), ValueError, "epsilon"),
     (lambda: nh.parking_shift([0.1, math.nan], 1.0), ValueError, "epsilon"),
     (lambda: nh.parking_shift(0.1, 5e-324), ValueError, "max_curvature"),
+    (lambda: nh.wheel_angle_fields([0.0] * 6, unified.diff_drive_wheels(0.3, 0.05)),
+     ValueError, "caster"),
+    (lambda: nh.wheel_angle_fields([0.0] * 4, unified.diff_drive_wheels(0.3, 0.05,
+                                                                        caster=False)),
+     ValueError, "configuration"),
+    (lambda: nh.wheel_angle_fields([0.0] * 3, []), ValueError, "wheels"),
+    (lambda: nh.wheel_angle_fields([0.0, 0.0, math.nan, 0.0, 0.0],
+                                   unified.diff_drive_wheels(0.3, 0.05, caster=False)),
+     ValueError, "configuration"),
 ]
 
 
