@@ -368,8 +368,10 @@ def car_fields(configuration: ArrayLike, wheelbase: float) -> NDArray[np.float64
               \mathbf f_2(q) = (0,\ 0,\ 0,\ 1)\ \text{(steer)}.
 
     Both satisfy :func:`car_constraints`. Their bracket :math:`[\mathbf f_1, \mathbf f_2] =
-    (0, 0, -1/(L\cos^2\delta), 0)` turns the car on the spot (Nelson's *wriggle*); the next,
-    :math:`[\mathbf f_1, [\mathbf f_1, \mathbf f_2]]`, moves it sideways (the *slide*).
+    (0, 0, -1/(L\cos^2\delta), 0)` turns the car on the spot about its rear-axle midpoint
+    (Nelson's *wriggle* is the same bracket the other way round, :math:`[\mathbf f_2,
+    \mathbf f_1]`); the next, :math:`[\mathbf f_1, [\mathbf f_1, \mathbf f_2]]`, moves it
+    sideways (Nelson's *slide*).
 
     Parameters
     ----------
@@ -745,7 +747,8 @@ def bracket_ranks(fields: Sequence[VectorField], configuration: ArrayLike, *,
 
     Examples
     --------
-    The car with its steering (:func:`car_fields`): two fields, the wriggle, the slide:
+    The car with its steering (:func:`car_fields`): two fields, the turn on the spot, the
+    slide:
 
     >>> def drive(q):
     ...     return car_fields(q, 2.5)[:, 0]
