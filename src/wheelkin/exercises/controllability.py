@@ -75,7 +75,7 @@ Exercise(
 )
 
 
-# ------------------------------------------------------------------ 2. the car's wriggle
+# ------------------------------------------------------------------ 2. the car's turn on the spot
 
 def wriggle(theta: float, steering: float, wheelbase: float) -> NDArray[np.float64]:
     """[f1, f2] of the car's drive field f1 = (cos theta, sin theta, tan(delta)/L, 0) and
@@ -165,19 +165,19 @@ def _excursion(epsilon: float, max_curvature: float) -> float:
 
 
 def parking_plan(shift: float, room: float, max_curvature: float) -> NDArray[np.float64]:
-    """Design: a move length epsilon (m) and a whole number of repetitions n of the car's
+    """Design: a move length epsilon (m) and a whole number of repetitions, count, of the car's
     four-move manoeuvre that shift it ``shift`` metres to its left (within 5 mm), while its
     rear-axle midpoint never goes more than ``room`` metres ahead of its start.
 
     One plan (the fewest repetitions): the longest move that fits, 2 sin(k eps)/k <= room,
-    sets n = ceil(shift / s(eps)); then eps is shortened until n exact shifts
+    sets count = ceil(shift / s(eps)); then eps is shortened until count exact shifts
     s(eps) = 8 sin(k eps / 2)^2 / k add up to ``shift``.
     """
     k = max_curvature
     longest = math.asin(min(1.0, k * room / 2)) / k
-    n = max(1, math.ceil(shift / nonholonomic.parking_shift(longest, k) - 1e-12))
-    epsilon = 2.0 / k * math.asin(math.sqrt(k * shift / (8 * n)))
-    return np.array([epsilon, float(n)])
+    count = max(1, math.ceil(shift / nonholonomic.parking_shift(longest, k) - 1e-12))
+    epsilon = 2.0 / k * math.asin(math.sqrt(k * shift / (8 * count)))
+    return np.array([epsilon, float(count)])
 
 
 def _leading_order_plan(shift, room, max_curvature):
@@ -194,10 +194,11 @@ def _room_as_move(shift, room, max_curvature):
 
 
 class PlanExercise(Exercise):
-    """A parking plan (epsilon, n) is judged by driving it, not by comparing numbers: it
-    passes a case when n is a whole number in [1, 1000], one manoeuvre's rear-axle excursion
-    fits the room, and n exact shifts end within 5 mm of the asked shift. The reference (the
-    plan with the fewest repetitions) serves the diagnoses of unit and order mistakes."""
+    """A parking plan (epsilon, count) is judged by driving it, not by comparing numbers: it
+    passes a case when count is a whole number in [1, 1000], one manoeuvre's rear-axle
+    excursion fits the room, and count exact shifts end within 5 mm of the asked shift. The
+    reference (the plan with the fewest repetitions) serves the diagnoses of unit and order
+    mistakes."""
 
     def _passed(self) -> str:
         return (f"✔ {self.name}: every plan ends within {1000 * SHIFT_TOLERANCE:g} mm of the "
@@ -208,29 +209,29 @@ class PlanExercise(Exercise):
             got = np.asarray(raw, dtype=float)
         except (TypeError, ValueError):
             return self._fail("shape", f"for {where} you returned {raw!r}: a plan is two "
-                              "numbers, (epsilon, n)")
+                              "numbers, (epsilon, count)")
         if got.shape != (2,):
             return self._fail("shape", f"for {where} you returned shape {got.shape}: a plan "
-                              "is two numbers, (epsilon, n)")
+                              "is two numbers, (epsilon, count)")
         if not np.all(np.isfinite(got)):
             return self._fail("nan", f"for {where} your plan contains NaN or infinity: "
                               f"{got.tolist()}")
         shift, room, k = (float(a) for a in case.args)
         expected = np.asarray(self.reference(*case.args), dtype=float)
-        epsilon, n = float(got[0]), float(got[1])
-        head = f"for {where} you returned epsilon = {epsilon:.6g} m, n = {n:g}"
-        if epsilon <= 0 or n <= 0:
+        epsilon, count = float(got[0]), float(got[1])
+        head = f"for {where} you returned epsilon = {epsilon:.6g} m, count = {count:g}"
+        if epsilon <= 0 or count <= 0:
             return self._fail("sign", f"{head}: both must be positive (moves of epsilon "
-                              "metres forward first, then back; n manoeuvres).")
+                              "metres forward first, then back; count manoeuvres).")
         if np.allclose(got, expected[::-1], rtol=1e-6):
-            return self._fail("swapped", f"{head}: epsilon and n are swapped; return "
-                              "(epsilon, n).")
+            return self._fail("swapped", f"{head}: epsilon and count are swapped; "
+                              "return (epsilon, count).")
         for factor, text in UNIT_FACTORS:
             if np.allclose(got, factor * expected, rtol=1e-4):
                 return self._fail("units", f"{head}: {text}")
         why = self._mistake(case, got)
-        if n != round(n) or not 1 <= n <= MAX_REPETITIONS:
-            return self._fail("wrong", f"{head}: n must be a whole number of manoeuvres, "
+        if count != round(count) or not 1 <= count <= MAX_REPETITIONS:
+            return self._fail("wrong", f"{head}: count must be a whole number of manoeuvres, "
                               f"from 1 to {MAX_REPETITIONS}.")
         ahead = _excursion(epsilon, k)
         if ahead > room + 1e-9:
@@ -238,7 +239,7 @@ class PlanExercise(Exercise):
                               f"{head}: each manoeuvre takes the rear axle {ahead:.3f} m "
                               f"ahead, more than the room of {room:g} m"
                               + (f": {why}" if why else "."))
-        reached = n * nonholonomic.parking_shift(epsilon, k)
+        reached = count * nonholonomic.parking_shift(epsilon, k)
         if abs(reached - shift) > SHIFT_TOLERANCE:
             return self._fail("specific" if why else "wrong",
                               f"{head}: the plan shifts the car {reached:.4f} m, "
@@ -259,10 +260,10 @@ class PlanExercise(Exercise):
 
 PlanExercise(
     "controllability.parking_plan",
-    "Design: (epsilon, n), a move length epsilon (m) and a whole number n of the car's "
-    "four-move full-lock manoeuvres (curvature max_curvature, 1/m) that shift it `shift` "
-    "metres to its left within 5 mm, its rear axle never more than `room` metres ahead of "
-    "its start.",
+    "Design: (epsilon, count), a move length epsilon (m) and a whole number, count, of "
+    "the car's four-move full-lock manoeuvres (curvature max_curvature, 1/m) that shift it "
+    "`shift` metres to its left within 5 mm, its rear axle never more than `room` metres "
+    "ahead of its start.",
     parking_plan,
     [Case((0.45, 1.00, CAR_CURVATURE)), Case((0.50, 0.30, CAR_CURVATURE)),
      Case((0.25, 0.40, CAR_CURVATURE)), Case((1.00, 1.50, 0.4))],
