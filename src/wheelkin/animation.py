@@ -32,7 +32,8 @@ try:  # IPython comes with the notebook extra; only show() needs it
 except ImportError:  # pragma: no cover - the plot extra alone
     HTML = Any
 
-__all__ = ["MAX_BYTES", "palette_png", "show", "to_html"]
+__all__ = ["FRAME_SLIDER_LABEL", "MAX_BYTES", "accessible_player", "palette_png", "show",
+           "to_html"]
 
 #: Budget for one animation's HTML (bytes). A page must stay under 3 MB in all.
 MAX_BYTES = 2_000_000
@@ -41,9 +42,13 @@ _UUID = re.compile(r"_anim_img([0-9a-f]{32})")
 _FA_LINK = re.compile(r'<link rel="stylesheet"\s+href="https://[^"]*font-awesome[^"]*">')
 _ICONS = {
     "fa-minus": "&minus;", "fa-fast-backward": "|&#9664;&#9664;", "fa-step-backward": "|&#9664;",
-    "fa-play fa-flip-horizontal": "&#9664;", "fa-pause": "II", "fa-play": "&#9654;",
+    "fa-play fa-flip-horizontal": "&#9664;", "fa-pause": "&#10074;&#10074;", "fa-play": "&#9654;",
     "fa-step-forward": "&#9654;|", "fa-fast-forward": "&#9654;&#9654;|", "fa-plus": "+",
 }
+#: The accessible name of a player's frame slider (matplotlib writes it without one).
+FRAME_SLIDER_LABEL = "Animation frame"
+_SLIDER = re.compile(
+    r'<input id="_anim_slider[0-9a-f]+" type="range" class="anim-slider"(?! aria-label)')
 _FRAME = re.compile(r'(frames\[\d+\] = "data:image/png;base64,)((?:[A-Za-z0-9+/=]|\\\n)+)(")')
 
 
@@ -90,6 +95,29 @@ def palette_png(data: bytes, colors: int = 256, *, min_font_pt: float | None = N
     extra = {"dpi": tuple(round(d) for d in found)} if found else {}
     quantised.save(buf, format="png", optimize=True, pnginfo=info, **extra)
     return buf.getvalue()
+
+
+def accessible_player(html: str) -> str:
+    """``html`` with every player's controls as assistive technology needs them.
+
+    Matplotlib's player names its buttons (``aria-label``) but not its frame slider, which a
+    screen reader then announces as an unnamed slider: the slider is named
+    :data:`FRAME_SLIDER_LABEL`. The pause button's icon is drawn with a symbol (two heavy bars)
+    rather than the letters "II", which speech input would take for the button's name.
+    Idempotent: a player that has both is left as it is. The book's build applies it to the
+    players stored before it existed (``tools/accessibility.py``).
+
+    >>> accessible_player('<input id="_anim_slider0a" type="range" class="anim-slider">')
+    '<input id="_anim_slider0a" type="range" class="anim-slider" aria-label="Animation frame">'
+    >>> once = accessible_player('<button aria-label="Pause"><span aria-hidden="true">II</span>')
+    >>> once == accessible_player(once), "II" in once
+    (True, False)
+    """
+    if not isinstance(html, str):
+        raise ValueError(f"html must be a string, got {type(html).__name__}")
+    html = _SLIDER.sub(lambda m: f'{m.group(0)} aria-label="{FRAME_SLIDER_LABEL}"', html)
+    return html.replace('<span aria-hidden="true">II</span>',
+                        f'<span aria-hidden="true">{_ICONS["fa-pause"]}</span>')
 
 
 def stable_id(name: str) -> str:
@@ -170,6 +198,7 @@ def to_html(
     out = _FA_LINK.sub("", out)
     for icon, text in _ICONS.items():
         out = out.replace(f'<i class="fa {icon}"></i>', f'<span aria-hidden="true">{text}</span>')
+    out = accessible_player(out)
     if colors is not None:
         out = _FRAME.sub(lambda m: _palette_frame(m, int(colors), smallest, fig_dpi), out)
     out = out.replace(
