@@ -104,8 +104,17 @@ nbval: $(STAMP)
 	  --nbval-sanitize-with tools/nbval_sanitize.cfg --nbval-cell-timeout 300 \
 	  -o addopts="-ra" -o testpaths=notebooks
 
-# The browser layer also starts `make lab`'s JupyterLab once (tests/browser/test_lab.py).
-browser: $(STAMP) $(LAB_STAMP)
+# The student web edition that the browser layer audits, rebuilt when a source of it is newer.
+STUDENT_SITE := _build/student/html/index.html
+STUDENT_SOURCES = _toc.yml _config.yml package-lock.json $(wildcard notebooks/*/*.ipynb \
+  notebooks/*/*.md book/*.md book/*/*.md book/_static/* book/_templates/* tools/*.py \
+  src/wheelkin/*.py src/wheelkin/*/*.py)
+$(STUDENT_SITE): $(STUDENT_SOURCES) | vendor
+	$(BIN)/python -m tools.student_edition --out _build/student
+
+# The browser layer also starts `make lab`'s JupyterLab once (tests/browser/test_lab.py), and
+# audits the student web edition too (tests/browser/test_accessibility.py).
+browser: $(STAMP) $(LAB_STAMP) $(STUDENT_SITE)
 	$(PYTEST) tests/browser -o addopts="-ra" --timeout 900
 
 # Every layer runs even when an earlier one failed; the summary names the failed ones.
