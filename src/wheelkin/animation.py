@@ -32,8 +32,8 @@ try:  # IPython comes with the notebook extra; only show() needs it
 except ImportError:  # pragma: no cover - the plot extra alone
     HTML = Any
 
-__all__ = ["FRAME_SLIDER_LABEL", "MAX_BYTES", "accessible_player", "palette_png", "show",
-           "to_html"]
+__all__ = ["FRAME_SLIDER_LABEL", "MAX_BYTES", "accessible_player", "describe", "palette_png",
+           "show", "to_html"]
 
 #: Budget for one animation's HTML (bytes). A page must stay under 3 MB in all.
 MAX_BYTES = 2_000_000
@@ -120,6 +120,17 @@ def accessible_player(html: str) -> str:
                         f'<span aria-hidden="true">{_ICONS["fa-pause"]}</span>')
 
 
+def describe(description: str, player_id: str) -> str:
+    """The fold under a player that holds its description, which the frames point to.
+
+    >>> describe("The dot <moves> right.", "0a")  # doctest: +NORMALIZE_WHITESPACE
+    '<details class="wheelkin-animation-description"><summary>Describe the
+    animation</summary><p id="desc0a">The dot &lt;moves&gt; right.</p></details>'
+    """
+    return ('<details class="wheelkin-animation-description"><summary>Describe the animation'
+            f'</summary><p id="desc{player_id}">{_html.escape(description)}</p></details>')
+
+
 def stable_id(name: str) -> str:
     """A 32-hex-digit id derived from ``name`` (the same name always gives the same id).
 
@@ -142,6 +153,7 @@ def to_html(
     max_bytes: int = MAX_BYTES,
     colors: int | None = 256,
     check: bool | None = None,
+    description: str | None = None,
 ) -> str:
     """Render ``anim`` to self-contained HTML with a stable id and alt text.
 
@@ -170,6 +182,11 @@ def to_html(
         :class:`wheelkin.style.FigureCheckError` naming the animation, the frame and the
         problem. ``None`` (default): only when the figure check is on
         (:func:`wheelkin.style.checking`); ``True``: always; ``False``: never.
+    description : str, optional
+        What happens in the animation, in words, for a reader who cannot see it move: the
+        motion, and what to notice (``alt`` says what a frame shows). It is shown under the
+        player in a fold, "Describe the animation", and screen readers announce it with the
+        frames (``aria-describedby``).
     """
     if not isinstance(anim, Animation):
         raise ValueError(f"anim must be a matplotlib Animation, got {type(anim).__name__}")
@@ -179,6 +196,10 @@ def to_html(
         raise ValueError(f"default_mode must be 'loop', 'once' or 'reflect', got {default_mode!r}")
     if check is not None and not isinstance(check, bool):
         raise ValueError(f"check must be True, False or None, got {check!r}")
+    if description is not None and (not isinstance(description, str)
+                                    or not description.strip()):
+        raise ValueError("description must be a non-empty text (what happens in the "
+                         f"animation) or None, got {description!r}")
     new_id = stable_id(name)
     from wheelkin import style
 
@@ -201,10 +222,13 @@ def to_html(
     out = accessible_player(out)
     if colors is not None:
         out = _FRAME.sub(lambda m: _palette_frame(m, int(colors), smallest, fig_dpi), out)
+    described = f' aria-describedby="desc{new_id}"' if description else ""
     out = out.replace(
         f'<img id="_anim_img{new_id}">',
-        f'<img id="_anim_img{new_id}" alt="{_html.escape(alt, quote=True)}">',
+        f'<img id="_anim_img{new_id}" alt="{_html.escape(alt, quote=True)}"{described}>',
     )
+    if description:
+        out += describe(description, new_id)
     if caption:
         out = (
             f'<figure class="wheelkin-animation" id="fig-{_html.escape(name)}">{out}'

@@ -185,7 +185,7 @@ def show_figure(fig: Any) -> None:
 
 
 def play(anim: Any, *, name: str, alt: str, caption: str | None = None,
-         **kwargs: Any) -> HTML:
+         description: str | None = None, **kwargs: Any) -> HTML:
     """An animation as a player that runs in the static page, every frame checked.
 
     ``wheelkin.animation.to_html`` with ``check=True``: each frame is checked with
@@ -202,6 +202,9 @@ def play(anim: Any, *, name: str, alt: str, caption: str | None = None,
         What a reader who cannot see the frames should know.
     caption : str, optional
         Shown under the player.
+    description : str, optional
+        What happens, in words, and what to notice: in a fold under the player, announced
+        with the frames by screen readers. Every animation of the book has one.
     **kwargs
         ``fps``, ``default_mode``, ``max_bytes``, ``colors`` of
         ``wheelkin.animation.to_html``.
@@ -217,4 +220,5 @@ def play(anim: Any, *, name: str, alt: str, caption: str | None = None,
     if "check" in kwargs:
         raise ValueError("play always checks the frames; use wheelkin.animation.show "
                          "to choose")
-    return animation.show(anim, name=name, alt=alt, caption=caption, check=True, **kwargs)
+    return animation.show(anim, name=name, alt=alt, caption=caption, check=True,
+                          description=description, **kwargs)
