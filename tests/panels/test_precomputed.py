@@ -63,7 +63,7 @@ def test_grid_values_are_the_controls_own(name):
 def test_describe_names_labels_values_and_defaults():
     info = describe("diffdrive.wheel_speeds")
     omega, v = info["axes"]
-    assert (omega["label"], v["label"]) == ("ω (mrad/s)", "v (steps/s)")
+    assert (omega["label"], v["label"]) == ("yaw rate ω (mrad/s)", "speed v (steps/s)")
     assert omega["values"][0] == "-6000" and omega["values"][-1] == "6000"
     assert omega["values"][omega["start"]] == "1000" and v["values"][v["start"]] == "1000"
     assert info["count"] == 25 * 5 and (info["width"], info["height"]) == (670, 360)

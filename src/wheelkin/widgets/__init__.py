@@ -116,6 +116,11 @@ class Panel:
         self._muted = False
         for control in self.controls.values():
             control.observe(self._on_change, names="value")
+            # A control's description names it in words ("yaw rate ω (rad/s)"), which screen
+            # readers announce: it is shown whole, not cut to the default label width.
+            look = getattr(control, "style", None)
+            if look is not None and getattr(look, "description_width", None) == "":
+                look.description_width = "initial"
         self.redraw()
 
     @property

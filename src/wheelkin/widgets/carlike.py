@@ -179,7 +179,7 @@ def steering_panel() -> Panel:
     top = round(math.degrees(RC_CAR_MAX_STEERING))
     controls = {
         "delta_deg": widgets.FloatSlider(value=15.0, min=-top, max=top, step=0.5,
-                                         description="δ (deg)"),
+                                         description="steering δ (deg)"),
         "geometry": widgets.Dropdown(options=[(v, k) for k, v in _GEOMETRY_NAMES.items()],
                                      value="ackermann", description="geometry"),
     }
@@ -191,7 +191,7 @@ def steering_panel() -> Panel:
 def rover_panel() -> Panel:
     """A slider for the OSR's inner front corner angle."""
     controls = {"delta_deg": widgets.FloatSlider(value=25.0, min=-45.0, max=45.0, step=0.5,
-                                                 description="δ (deg)")}
+                                                 description="corner δ (deg)")}
     return Panel(controls, _steering_setup("rover"),
                  lambda view, delta_deg: view.update(delta_deg),
                  title="The OSR's corners and its turning centre", dpi=100)
@@ -277,7 +277,7 @@ def pursuit_panel() -> Panel:
     """Sliders: the look-ahead distance and the bearing of the look-ahead point."""
     controls = {
         "lookahead": widgets.FloatSlider(value=0.8, min=0.2, max=1.5, step=0.05,
-                                         description="L_d (m)"),
+                                         description="look-ahead L_d (m)"),
         "bearing_deg": widgets.FloatSlider(value=20.0, min=-60.0, max=60.0, step=1.0,
                                            description="bearing (deg)"),
     }

@@ -211,7 +211,7 @@ def manoeuvre_panel() -> Panel:
     """Sliders: the size of each move (m) and the vehicle."""
     controls = {
         "epsilon": widgets.FloatSlider(value=0.2, min=0.05, max=0.5, step=0.01,
-                                       description="ε (m)"),
+                                       description="move size ε (m)"),
         "vehicle": widgets.Dropdown(options=list(VEHICLES), value="car",
                                     description="vehicle"),
     }

@@ -190,15 +190,16 @@ def _figure(figsize=(5.0, 5.0), dpi=100):
 @register("conventions.twist_icr")
 def twist_icr_panel() -> Panel:
     """Sliders for vx, vy (m/s) and omega (rad/s); the figure shows path, ICR and velocities."""
-    style = {"description_width": "90px"}
+    style = {"description_width": "130px"}
     layout = widgets.Layout(width="420px")
     controls = {
         "vx": widgets.FloatSlider(value=0.5, min=-1.0, max=1.0, step=0.05,
-                                  description="vx (m/s)", style=style, layout=layout),
+                                  description="forward vx (m/s)", style=style, layout=layout),
         "vy": widgets.FloatSlider(value=0.0, min=-1.0, max=1.0, step=0.05,
-                                  description="vy (m/s)", style=style, layout=layout),
+                                  description="left vy (m/s)", style=style, layout=layout),
         "omega": widgets.FloatSlider(value=0.5, min=-2.0, max=2.0, step=0.05,
-                                     description="ω (rad/s)", style=style, layout=layout),
+                                     description="yaw rate ω (rad/s)", style=style,
+                                     layout=layout),
     }
 
     def setup():

@@ -187,10 +187,10 @@ def wheel_speeds_panel() -> Panel:
 
     controls = {
         "v_steps_per_s": widgets.IntSlider(value=1000, min=-2000, max=2000, step=50,
-                                           description="v (steps/s)",
+                                           description="speed v (steps/s)",
                                            continuous_update=True),
         "omega_mrad_per_s": widgets.IntSlider(value=1000, min=-6000, max=6000, step=50,
-                                              description="ω (mrad/s)",
+                                              description="yaw rate ω (mrad/s)",
                                               continuous_update=True),
     }
     return Panel(controls, setup, update,

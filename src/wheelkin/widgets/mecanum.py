@@ -373,7 +373,8 @@ def wheel_rates_panel() -> Panel:
     """Four wheel-rate sliders (rad/s); the predicted path over 2 s and the speed verdict."""
     g = EXAMPLE_GEOMETRY
     duration = 2.0
-    controls = {name: _slider(f"{name} (rad/s)", -80.0, 80.0, 1.0, value)
+    spoken = {"FL": "front left", "FR": "front right", "RL": "rear left", "RR": "rear right"}
+    controls = {name: _slider(f"{spoken[name]} {name} (rad/s)", -80.0, 80.0, 1.0, value)
                 for name, value in zip(WHEEL_NAMES, (10.0, 40.0, 40.0, 10.0), strict=True)}
 
     def setup():

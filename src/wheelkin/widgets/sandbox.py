@@ -126,10 +126,12 @@ def slip_panel() -> Panel:
         return view.update(mu, omega)  # the moving artists: the panel blits them
 
     controls = {
-        "mu": widgets.FloatSlider(value=0.8, min=0.05, max=1.0, step=0.05, description="μ",
+        "mu": widgets.FloatSlider(value=0.8, min=0.05, max=1.0, step=0.05,
+                                  description="friction μ",
                                   continuous_update=False),
         "omega": widgets.FloatSlider(value=2.0, min=0.0, max=6.0, step=0.25,
-                                     description="ω (rad/s)", continuous_update=False),
+                                     description="yaw rate ω (rad/s)",
+                                     continuous_update=False),
     }
     return Panel(controls, setup, update,
                  title="The Radon Ulzer turning at 0.4 m/s: the grip a turn needs")

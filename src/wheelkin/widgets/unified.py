@@ -182,11 +182,11 @@ def constraints_panel() -> Panel:
     """
     controls = {
         "vx": widgets.FloatSlider(value=0.3, min=-0.5, max=0.5, step=0.05,
-                                  description="vx (m/s)"),
+                                  description="forward vx (m/s)"),
         "vy": widgets.FloatSlider(value=0.0, min=-0.5, max=0.5, step=0.05,
-                                  description="vy (m/s)"),
+                                  description="left vy (m/s)"),
         "omega": widgets.FloatSlider(value=0.0, min=-2.0, max=2.0, step=0.1,
-                                     description="ω (rad/s)"),
+                                     description="yaw rate ω (rad/s)"),
         "steer": widgets.Checkbox(value=True, description="steer the steered wheels"),
     }
 
