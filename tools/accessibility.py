@@ -21,7 +21,9 @@ turned off (``tests/browser/test_accessibility.py``, ``book/accessibility.md``):
    written now already has both, and is left as it is).
 5. **The site's index.html**, which sends the reader to the first page, is written as a
    whole document (``html-has-lang``, ``document-title``) instead of a bare ``<meta>``.
-6. **Wide displayed equations and motion**: ``book/_static/accessibility.js`` makes a
+6. **The general and module indexes** lay out their entries with tables; those are marked
+   ``role="presentation"``, as layout, not data tables without header cells.
+7. **Wide displayed equations and motion**: ``book/_static/accessibility.js`` makes a
    displayed equation that scrolls sideways reachable by keyboard (axe
    ``scrollable-region-focusable``, as the theme does for wide code and tables), and under
    ``prefers-reduced-motion`` sets every animation player to play once and stop;
@@ -34,6 +36,7 @@ from __future__ import annotations
 
 import functools
 import html
+import re
 from pathlib import Path
 
 from docutils import nodes
@@ -172,6 +175,32 @@ def _write_root_page(app, exception) -> None:
         "</body>\n</html>\n", encoding="utf-8")
 
 
+#: Sphinx lays out its general and module indexes with tables: they hold no data to read
+#: by row and column, so they are marked as layout (their lists and links read as they are).
+_INDEX_TABLE = re.compile(r'<table(?![^>]*\brole=)(?=[^>]*class="indextable)')
+
+
+def mark_layout_tables(html_text: str) -> str:
+    """The index pages' layout tables marked ``role="presentation"`` (idempotent).
+
+    >>> mark_layout_tables('<table class="indextable genindextable"><tr><td>a</td></tr>')
+    '<table role="presentation" class="indextable genindextable"><tr><td>a</td></tr>'
+    >>> mark_layout_tables(mark_layout_tables('<table class="indextable">')).count("role")
+    1
+    """
+    return _INDEX_TABLE.sub('<table role="presentation"', html_text)
+
+
+def _mark_index_tables(app, exception) -> None:
+    if exception is not None or app.builder.format != "html":
+        return
+    for page in Path(app.outdir).glob("*index*.html"):
+        text = page.read_text(encoding="utf-8")
+        new = mark_layout_tables(text)
+        if new != text:
+            page.write_text(new, encoding="utf-8")
+
+
 def setup(app):
     static = Path(__file__).resolve().parents[1] / "book" / "_static"
     for name in STATIC_FILES.values():
@@ -183,4 +212,5 @@ def setup(app):
     app.connect("html-page-context", _wrap_toctree, priority=900)
     app.connect("doctree-resolved", _label_players)
     app.connect("build-finished", _write_root_page, priority=400)
+    app.connect("build-finished", _mark_index_tables)
     return {"parallel_read_safe": True, "parallel_write_safe": True, "version": "1"}

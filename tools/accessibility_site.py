@@ -121,6 +121,12 @@ class PageAudit:
     no_visible_focus: list[str] = field(default_factory=list)
     #: animations whose frame changed with nobody pressing anything
     moving_by_itself: list[str] = field(default_factory=list)
+    #: figures whose alt text says no more than the caption, animations without a
+    #: description, tables without a header cell
+    undescribed: list[str] = field(default_factory=list)
+    figures: int = 0
+    animations: int = 0
+    tables: int = 0
 
 
 WAIT_FOR_MATH = """async () => {
@@ -255,6 +261,63 @@ FOCUS_CHECK = "(() => {" + CONTROLS_JS + r"""
   window.scrollTo(scroll[0], scroll[1]);
   return {controls: all.length, unreachable, invisible};
 })()"""
+
+#: A figure's alt text must say more than its caption: at least this many words, of which
+#: at least :data:`NEW_WORDS` are not in the caption. An animation's description the same.
+MIN_WORDS = 10
+NEW_WORDS = 6
+
+#: Figures (images of the page's content), animations and tables, and how each is described:
+#: a figure by its alt text, beyond its caption; an animation by the text its frames point to
+#: (aria-describedby), beyond its caption; a table by header cells. A live panel's precomputed
+#: view (tools/live_pages.py) is left out: its image is the panel's figure at the values its
+#: labelled sliders show, and its alt text says that.
+DESCRIPTIONS = """([minWords, newWords]) => {
+  const words = t => (t || "").toLowerCase().match(/[a-z0-9]+/g) || [];
+  const short = t => (t || "").replace(/\\s+/g, " ").trim().slice(0, 70);
+  const main = document.querySelector("#main-content, .bd-article, main") || document.body;
+  const problems = [];
+  function beyond(text, caption, what) {
+    const mine = words(text), theirs = new Set(words(caption));
+    const added = new Set(mine.filter(w => !theirs.has(w)));
+    if (mine.length < minWords) return `${what} has ${mine.length} words (at least ${minWords})`;
+    if (added.size < newWords) {
+      return `${what} adds ${added.size} words to its caption (at least ${newWords})`;
+    }
+    return null;
+  }
+  const caption = el => {
+    const figure = el.closest("figure");
+    const cap = figure && figure.querySelector(":scope > figcaption");
+    return cap ? cap.textContent : "";
+  };
+  const figures = [...main.querySelectorAll("img")].filter(img =>
+    !img.closest("div.animation") && !img.closest(".wk-precomputed") &&
+    img.getAttribute("role") !== "presentation" && img.getAttribute("alt") !== "");
+  for (const img of figures) {
+    const found = beyond(img.getAttribute("alt"), caption(img), "its alt text");
+    if (found) problems.push(`figure ${short(img.getAttribute("alt"))}: ${found}`);
+  }
+  const players = [...main.querySelectorAll("div.animation img")];
+  for (const img of players) {
+    const ids = (img.getAttribute("aria-describedby") || "").split(/\\s+/).filter(Boolean);
+    const text = ids.map(id => (document.getElementById(id) || {}).textContent || "").join(" ");
+    if (!text.trim()) {
+      problems.push(`animation ${img.id}: no description (aria-describedby)`);
+      continue;
+    }
+    const found = beyond(text, caption(img), "its description");
+    if (found) problems.push(`animation ${img.id}: ${found}`);
+  }
+  const tables = [...main.querySelectorAll("table")].filter(
+    t => !["presentation", "none"].includes(t.getAttribute("role")));
+  for (const table of tables) {
+    if (!table.querySelector("th")) {
+      problems.push(`table ${short(table.textContent)}: no header cell (th)`);
+    }
+  }
+  return {problems, figures: figures.length, animations: players.length, tables: tables.length};
+}"""
 
 #: The frames the animation players show now, by player id.
 PLAYER_FRAMES = """() => Object.fromEntries([...document.querySelectorAll("div.animation img")]

@@ -108,6 +108,10 @@ def audit(browser, axe_ready):
             found = page.evaluate(a11y.RUN_AXE, list(a11y.AXE_TAGS))
             report = a11y.PageAudit(page_name, found["violations"], found["passed_checks"],
                                     found["rules_applied"], found["incomplete"])
+            described = page.evaluate(a11y.DESCRIPTIONS, [a11y.MIN_WORDS, a11y.NEW_WORDS])
+            report.undescribed = described["problems"]
+            report.figures, report.animations, report.tables = (
+                described["figures"], described["animations"], described["tables"])
             page.keyboard.press("Tab")  # from here on, focus comes from the keyboard
             focus = page.evaluate(a11y.FOCUS_CHECK)
             report.controls = focus["controls"]
@@ -131,7 +135,9 @@ def audit(browser, axe_ready):
             "rules": sorted({v["id"] for v in report.violations + report.dark_violations}),
             "passed_checks": report.passed_checks, "controls": report.controls,
             "keyboard_problems": len(report.unreachable) + len(report.no_visible_focus),
-            "moving": len(report.moving_by_itself)}
+            "moving": len(report.moving_by_itself),
+            "figures": report.figures, "animations": report.animations,
+            "tables": report.tables, "undescribed": len(report.undescribed)}
         return report
 
     yield run
@@ -186,6 +192,14 @@ def test_book_page_controls_by_keyboard(audit, site_url, page):
     assert not problems, f"{page}:\n" + "\n".join(problems)
 
 
+@pytest.mark.parametrize("page", BOOK_PAGES)
+def test_book_page_describes_figures_and_tables(audit, site_url, page):
+    """Every figure's alt text says more than its caption (what it shows and what to notice),
+    every animation has a description tied to its frames, every table has header cells."""
+    problems = audit("book", site_url, page).undescribed
+    assert not problems, f"{page}:\n" + "\n".join(problems)
+
+
 @pytest.mark.parametrize("page", STUDENT_PAGES)
 def test_student_page_passes_axe(audit, student_site_url, page):
     report = audit("student", student_site_url, page)
@@ -198,6 +212,12 @@ def test_student_page_passes_axe(audit, student_site_url, page):
 @pytest.mark.parametrize("page", STUDENT_PAGES)
 def test_student_page_controls_by_keyboard(audit, student_site_url, page):
     problems = _keyboard_message(audit("student", student_site_url, page))
+    assert not problems, f"student edition, {page}:\n" + "\n".join(problems)
+
+
+@pytest.mark.parametrize("page", STUDENT_PAGES)
+def test_student_page_describes_figures_and_tables(audit, student_site_url, page):
+    problems = audit("student", student_site_url, page).undescribed
     assert not problems, f"student edition, {page}:\n" + "\n".join(problems)
 
 
@@ -632,13 +652,31 @@ def test_keyboard_walk_through_a_chapter(browser, site_url):
 # --------------------------------------------------------------------------- the page
 
 
+def test_page_says_truly_whether_the_pdf_is_tagged():
+    """The accessibility page's word on the printed edition matches the built PDF (read with
+    poppler's pdfinfo), when this machine has built one (`make pdf`)."""
+    import shutil
+
+    pdf = ROOT / "_build" / "pdf" / "wheelkin.pdf"
+    if not pdf.is_file() or shutil.which("pdfinfo") is None:
+        pytest.skip("no printed edition built here (make pdf), or no pdfinfo")
+    out = subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True, timeout=60,
+                         check=True).stdout
+    tagged = any(line.split(":", 1)[1].strip() == "yes" for line in out.splitlines()
+                 if line.startswith("Tagged:"))
+    says_untagged = "is not tagged" in " ".join(PAGE.read_text(encoding="utf-8").split())
+    assert says_untagged != tagged, (f"the PDF is {'' if tagged else 'not '}tagged; "
+                                     "book/accessibility.md says otherwise")
+
+
 def _chromium_version() -> str:
     try:
         out = subprocess.run([str(CHROMIUM), "--version"], capture_output=True, text=True,
                              timeout=30, check=False).stdout
     except OSError:
         return ""
-    return " ".join(w for w in out.split() if w[:1].isdigit())[:20]
+    versions = [w for w in out.split() if w.count(".") >= 2 and w.replace(".", "").isdigit()]
+    return versions[0] if versions else ""
 
 
 def test_accessibility_page_states_the_measured_result(browser, axe_ready):
