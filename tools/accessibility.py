@@ -26,10 +26,12 @@ turned off (``tests/browser/test_accessibility.py``, ``book/accessibility.md``):
 7. **Wide displayed equations and motion**: ``book/_static/accessibility.js`` makes a
    displayed equation that scrolls sideways reachable by keyboard (axe
    ``scrollable-region-focusable``, as the theme does for wide code and tables), and under
-   ``prefers-reduced-motion`` sets every animation player to play once and stop;
-   ``book/_static/accessibility.css`` draws a visible focus ring on every control and turns
-   transitions off under ``prefers-reduced-motion``. This extension adds both files to every
-   page.
+   ``prefers-reduced-motion`` sets every animation player to play once and stop; it also
+   names the answers' folds by their titles and makes the module index's group togglers
+   (images only a mouse could click) buttons. ``book/_static/accessibility.css`` draws a
+   visible focus ring on every control the theme leaves without one, turns transitions off
+   under ``prefers-reduced-motion`` and shows the dark theme's cell outputs on white. This
+   extension adds both files to every page.
 """
 
 from __future__ import annotations

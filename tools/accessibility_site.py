@@ -293,7 +293,8 @@ DESCRIPTIONS = """([minWords, newWords]) => {
   };
   const figures = [...main.querySelectorAll("img")].filter(img =>
     !img.closest("div.animation") && !img.closest(".wk-precomputed") &&
-    img.getAttribute("role") !== "presentation" && img.getAttribute("alt") !== "");
+    !["presentation", "none", "button"].includes(img.getAttribute("role")) &&
+    img.getAttribute("alt") !== "");
   for (const img of figures) {
     const found = beyond(img.getAttribute("alt"), caption(img), "its alt text");
     if (found) problems.push(`figure ${short(img.getAttribute("alt"))}: ${found}`);

@@ -49,9 +49,39 @@
     }
   }
 
+  /* The module index's group togglers (Sphinx's doctools.js) are images that only a mouse
+     can click: each becomes a button, named after its group, that Enter and Space press, and
+     that says whether its group is shown. */
+  function indexTogglers() {
+    var imgs = document.querySelectorAll("img.toggler");
+    for (var i = 0; i < imgs.length; i++) {
+      var img = imgs[i];
+      var row = img.closest("tr");
+      var code = row ? row.querySelector("code") : null;
+      var group = code ? code.textContent.trim() : "this group";
+      img.setAttribute("role", "button");
+      img.setAttribute("tabindex", "0");
+      img.setAttribute("aria-label", "Submodules of " + group);
+      var sync = (function (el) {
+        return function () {
+          el.setAttribute("aria-expanded", /minus\.png$/.test(el.src) ? "true" : "false");
+        };
+      })(img);
+      sync();
+      img.addEventListener("click", sync);
+      img.addEventListener("keydown", function (event) {
+        if (event.key === "Enter" || event.key === " ") {
+          event.preventDefault();
+          event.currentTarget.click();
+        }
+      });
+    }
+  }
+
   /* Once the page and the theme's scripts have run (the fold buttons are theirs). */
   function start() {
     nameToggles();
+    indexTogglers();
     equationTabStops();
     var main = document.getElementById("main-content") || document.body;
     /* MathJax typesets after the page has loaded: its output is a change of the page. */
