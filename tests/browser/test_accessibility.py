@@ -248,8 +248,11 @@ def test_keyboard_checks_catch_a_hidden_focus(browser):
             '<button id="ringed">ringed</button> <button id="bare">bare</button> '
             '<a href="#x" tabindex="-1">away</a>'
             '<div class="animation"><img id="_anim_img1" src="data:,a"></div>'
-            "<script>setTimeout(() => { document.getElementById('_anim_img1').src = 'data:,b'; "
-            "}, 300);</script></main></body></html>")
+            # A new frame every 200 ms while the page is open: on a loaded machine, one
+            # timed change could come before the first look at the frames.
+            "<script>let n = 0; setInterval(() => { "
+            "document.getElementById('_anim_img1').src = 'data:,' + (++n); "
+            "}, 200);</script></main></body></html>")
         frames = page.evaluate(a11y.PLAYER_FRAMES)
         page.keyboard.press("Tab")
         found = page.evaluate(a11y.FOCUS_CHECK)
