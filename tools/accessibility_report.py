@@ -44,7 +44,8 @@ def summary(results: dict) -> dict:
         "axe_core": results["axe_core"], "tags": list(results["tags"]),
         "rules": results["rules"],
         **{edition: {k: results[edition][k] for k in ("pages", "violations", "dark_violations",
-                                                      "keyboard_problems")}
+                                                      "keyboard_problems", "figures",
+                                                      "animations", "tables", "undescribed")}
            for edition in ("book", "student")},
         "walk": {**{k: walk[k] for k in ("chapter", "pages", "controls", "reached")},
                  "used": [kind for kind in KINDS if kind in walk["used"]]},
@@ -90,6 +91,15 @@ def render(results: dict, date: str) -> str:
         lines.append(f"| {name} | {figures_of['pages']} | {figures_of['violations']} | "
                      f"{figures_of['dark_violations']} | {figures_of['keyboard_problems']} |")
     lines += [
+        "",
+        f"The book's pages hold {book['figures']} figures, {book['animations']} animations "
+        f"and {book['tables']} data tables (the student edition's: {student['figures']}, "
+        f"{student['animations']} and {student['tables']}); "
+        + ("every figure's alt text and every animation's description says more than its "
+           "caption, and every table has header cells."
+           if book["undescribed"] + student["undescribed"] == 0 else
+           f"{book['undescribed'] + student['undescribed']} of them are not described as "
+           "they should be."),
         "",
         f"The keyboard-only walk went through the {walk['pages']} pages of the chapter "
         f"*{_title(walk['chapter'])}*: Tab reached {walk['reached']} of its "

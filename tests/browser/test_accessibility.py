@@ -682,6 +682,13 @@ def _chromium_version() -> str:
     return versions[0] if versions else ""
 
 
+def _described(pages: dict) -> dict:
+    """An edition's figures, animations and data tables, and how many of them are not
+    described (test_*_page_describes_figures_and_tables), over all its pages."""
+    return {k: sum(p[k] for p in pages.values())
+            for k in ("figures", "animations", "tables", "undescribed")}
+
+
 def test_accessibility_page_states_the_measured_result(browser, axe_ready):
     """Runs last: what this session measured (every page of both editions audited) is
     written to _build/accessibility/audit.json, and the page's figures must equal it."""
@@ -706,14 +713,16 @@ def test_accessibility_page_states_the_measured_result(browser, axe_ready):
                  "dark_violations": sum(p["dark_violations"] for p in book.values()),
                  "passed_checks": sum(p["passed_checks"] for p in book.values()),
                  "controls": sum(p["controls"] for p in book.values()),
-                 "keyboard_problems": sum(p["keyboard_problems"] for p in book.values())},
+                 "keyboard_problems": sum(p["keyboard_problems"] for p in book.values()),
+                 **_described(book)},
         "student": {"pages": len(student),
                     "violations": sum(p["violations"] for p in student.values()),
                     "dark_violations": sum(p["dark_violations"] for p in student.values()),
                     "passed_checks": sum(p["passed_checks"] for p in student.values()),
                     "controls": sum(p["controls"] for p in student.values()),
                     "keyboard_problems": sum(p["keyboard_problems"]
-                                             for p in student.values())},
+                                             for p in student.values()),
+                    **_described(student)},
         "walk": {"chapter": walk["chapter"], "pages": len(walk["pages"]),
                  "stops": sum(p["stops"] for p in walk["pages"]),
                  "controls": sum(p["controls"] for p in walk["pages"]),
