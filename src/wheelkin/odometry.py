@@ -61,6 +61,14 @@ The uncertainty of a dead-reckoned pose (covariance propagation, Monte Carlo, UM
 were first: ``wheelkin.odometry.propagate_covariance`` is
 ``wheelkin.odometry_uncertainty.propagate_covariance``, and so are ``step_jacobians``,
 ``propagate_path``, ``monte_carlo_poses``, ``umbmark_correction`` and their records.
+
+Motion models
+-------------
+Thrun, Burgard and Fox's probabilistic motion models, which a localisation course uses, are
+in :mod:`wheelkin.motion_models`; they are importable from here too, as the chapter names
+them: ``wheelkin.odometry.motion_model_odometry`` (the density of table 5.5),
+``wheelkin.odometry.sample_motion_model_odometry`` (its sampler, table 5.6),
+``sample_motion_model_velocity`` (table 5.3), ``odometry_motion`` and ``OdometryMotion``.
 """
 
 from __future__ import annotations
@@ -75,6 +83,13 @@ from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors, arc_step, c_div
 from wheelkin.frames import Pose, wrap_angle
+
+# Thrun's motion models live in wheelkin.motion_models; the chapter imports them from here.
+from wheelkin.motion_models import OdometryMotion as OdometryMotion
+from wheelkin.motion_models import motion_model_odometry as motion_model_odometry
+from wheelkin.motion_models import odometry_motion as odometry_motion
+from wheelkin.motion_models import sample_motion_model_odometry as sample_motion_model_odometry
+from wheelkin.motion_models import sample_motion_model_velocity as sample_motion_model_velocity
 
 # The uncertainty of a dead-reckoned pose moved to wheelkin.odometry_uncertainty; its names
 # stay importable from here, as before.
