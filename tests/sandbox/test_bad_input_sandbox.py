@@ -96,7 +96,8 @@ def _good_values() -> dict:
         "controller": lambda t, world: None,
         # sensors
         "steps_per_rev": 100.0, "noise": 0.5, "seed": 3, "step": [0, 1],
-        "counts": [[1, 2], [3, -4]],
+        "counts": [[1, 2], [3, -4]], "noise_density": 2e-4, "bias": 0.001, "interval": 0.02,
+        "t": [0.0, 0.02, 0.04], "heading": [0.0, 0.01, 0.015],
         # render
         "steering": None, "show_icr": True, "labels": True, "color": "#1f77b4", "alpha": 1.0,
         "zorder": 3.0, "slipping": [False, True], "trajectory": traj, "plan": [[0, 0], [1, 0]],
@@ -202,6 +203,11 @@ def _entries():
             return getattr(enc, name)
         return make
 
+    def gyro_method(name):
+        def make():
+            return getattr(sensors.Gyro(2e-4, 0.001, seed=1), name)
+        return make
+
     def then(make, finish):
         """``make`` with its own signature, and ``finish`` applied to what it made."""
         def call(**kwargs):
@@ -283,6 +289,8 @@ def _entries():
         "world.Robot.command_twist": after_step("command_twist"),
         "sensors.Encoder.counts": encoder_method("counts"),
         "sensors.Encoder.angles": encoder_method("angles"),
+        "sensors.Gyro.variance": gyro_method("variance"),
+        "sensors.Gyro.turns": gyro_method("turns"),
         "render.VehicleDrawing.update": drawing_update,
         "widgets.sandbox.SlipView.update": slip_view_update,
         "widgets.sandbox.SlipView": lambda: panel.SlipView,

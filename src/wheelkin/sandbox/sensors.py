@@ -1,4 +1,5 @@
-"""Wheel encoders: quantised, cumulative counts of each wheel's rotation, optionally noisy.
+"""Wheel encoders (quantised, cumulative counts of each wheel's rotation, optionally noisy)
+and a rate gyro (the body's yaw rate, with a bias and white noise).
 
 An incremental encoder with ``steps_per_rev`` counts per wheel revolution reports, after the
 wheel has turned by the (unwrapped, cumulative) angle phi since the start,
@@ -16,6 +17,10 @@ With ``steps_per_rev=None`` the encoder is ideal: the "count" is the wheel angle
 unquantised and noise-free.
 
 Convert counts to travel with :meth:`Encoder.angles` (rad) and multiply by the wheel radius.
+
+A :class:`Gyro` reads the body's true yaw rate, which slipping wheels do not corrupt, plus a
+constant bias and white noise of a given density; :meth:`Gyro.turns` integrates it over the
+intervals of a recorded run, as a robot's firmware does between two odometry updates.
 """
 
 from __future__ import annotations
@@ -27,7 +32,7 @@ from numpy.typing import ArrayLike
 
 from wheelkin import _validate as V
 
-__all__ = ["Encoder"]
+__all__ = ["Encoder", "Gyro"]
 
 _BLOCK = 4096
 #: Counts per revolution an encoder may have (an ideal one aside), and the largest noise, counts.
@@ -127,3 +132,70 @@ class Encoder:
         if not self.quantised:
             return c
         return c * (2 * math.pi / self.steps_per_rev)
+
+
+#: The largest gyro noise density (rad/s/sqrt(Hz)) and bias (rad/s) accepted.
+MAX_GYRO_NOISE = 10.0
+MAX_GYRO_BIAS = 100.0
+
+
+class Gyro:
+    r"""A rate gyro about the vertical axis, integrated over intervals.
+
+    Over an interval of :math:`\Delta t` seconds in which the body's heading changed by
+    :math:`\Delta\theta`, the integrated reading is
+
+    .. math:: z = \Delta\theta + b\,\Delta t + n,\qquad n \sim \mathcal N(0,\ \sigma_g^2\,\Delta t):
+
+    white rate noise of density :math:`\sigma_g` (rad/s/√Hz) integrates to a random walk whose
+    variance grows with the time (:meth:`variance`), and a bias :math:`b` (rad/s, what is left
+    after the calibration at rest) adds a drift. The body's turn comes from the true heading, so
+    the gyro sees the robot's rotation whether its wheels grip or slip.
+
+    Parameters
+    ----------
+    noise_density : float
+        :math:`\sigma_g`, rad/s/√Hz (in [0, 10]).
+    bias : float
+        :math:`b`, rad/s (within +-100).
+    seed : int
+        Seed of the noise (>= 0): every call of :meth:`turns` draws the same noise.
+
+    Examples
+    --------
+    >>> gyro = Gyro(noise_density=0.0, bias=0.01)
+    >>> gyro.turns([0.0, 1.0, 3.0], [0.0, 0.5, 0.5]).tolist()
+    [0.51, 0.02]
+    """
+
+    def __init__(self, noise_density: float = 0.0, bias: float = 0.0, seed: int = 0) -> None:
+        self.noise_density = V.in_range("noise_density", noise_density, 0.0, MAX_GYRO_NOISE)
+        self.bias = V.in_range("bias", bias, -MAX_GYRO_BIAS, MAX_GYRO_BIAS)
+        self.seed = _integer("seed", seed, 0)
+
+    def variance(self, interval: float) -> float:
+        r"""The variance of one integrated reading over ``interval`` seconds, rad²:
+        :math:`\sigma_g^2\,\Delta t` (the bias is not noise: it is the same every time)."""
+        dt = V.positive("interval", interval)
+        if dt > 1e6:
+            raise ValueError(f"interval must be at most 1e6 s, got {interval!r}")
+        return self.noise_density**2 * dt
+
+    def turns(self, t: ArrayLike, heading: ArrayLike) -> np.ndarray:
+        """The integrated readings between consecutive times ``t`` (s, increasing, shape (N,))
+        of a run whose true, unwrapped ``heading`` (rad, shape (N,)) is recorded: shape
+        (N - 1,), rad."""
+        times = V.finite_array("t", t)
+        theta = V.finite_array("heading", heading)
+        if times.ndim != 1 or times.size < 2 or np.any(np.diff(times) <= 0):
+            raise ValueError("t must be a 1-D array of at least two increasing times, s")
+        if np.max(np.abs(times)) > 1e9:
+            raise ValueError("t must be within +-1e9 s")
+        if theta.shape != times.shape:
+            raise ValueError(f"heading must have the shape of t {times.shape}, got "
+                             f"{theta.shape}")
+        if np.max(np.abs(theta)) > 1e9:
+            raise ValueError("heading must be within +-1e9 rad")
+        dt = np.diff(times)
+        noise = np.random.default_rng(self.seed).standard_normal(dt.size)
+        return np.diff(theta) + self.bias * dt + self.noise_density * np.sqrt(dt) * noise
