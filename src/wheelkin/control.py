@@ -206,7 +206,8 @@ Direction = Literal["auto", "forward", "backward"]
 
 
 def move_to_pose(pose: Pose | ArrayLike, goal: Pose | ArrayLike, k_rho: float, k_alpha: float,
-                 k_beta: float, *, direction: Direction = "auto") -> Twist | np.ndarray:
+                 k_beta: float, *, direction: Direction = "auto",
+                 stop_distance: float = 0.0) -> Twist | np.ndarray:
     r"""The pose controller of Astolfi, Siegwart et al. and Corke: a twist towards ``goal``.
 
     In the polar coordinates of :func:`polar_coordinates`,
@@ -248,6 +249,13 @@ def move_to_pose(pose: Pose | ArrayLike, goal: Pose | ArrayLike, k_rho: float, k
     and keeps it, as :cite:t:`corke2017` does, avoids switching back and forth near
     :math:`|\alpha| = \pi/2`).
 
+    **At the goal** the bearing :math:`\alpha` is undefined, and near it a measured pose's
+    noise decides it: a millimetre of noise at :math:`\rho` = 1 mm turns :math:`\alpha`
+    anywhere, and the law spins the robot off its heading (the chapter measures it). Within
+    ``stop_distance`` of the goal the law therefore takes :math:`\rho = 0` (as at the goal
+    itself): :math:`v = 0` and :math:`\omega = -k_\alpha\operatorname{wrap}(\theta)`, a
+    turn on the spot to the goal's heading. The default 0 is the law as published.
+
     Parameters
     ----------
     pose : Pose or array_like, shape (3,) or (..., 3)
@@ -262,6 +270,8 @@ def move_to_pose(pose: Pose | ArrayLike, goal: Pose | ArrayLike, k_rho: float, k
         :math:`k_\beta`, 1/s (< 0).
     direction : {"auto", "forward", "backward"}
         "auto" (default): backwards when :math:`|\alpha| > \pi/2`, else forwards.
+    stop_distance : float
+        m (>= 0): within this distance of the goal, only turn to its heading (default 0).
 
     Returns
     -------
@@ -291,15 +301,18 @@ def move_to_pose(pose: Pose | ArrayLike, goal: Pose | ArrayLike, k_rho: float, k
     g = _one_pose("goal", goal)
     kr, ka, kb = _pose_gains(k_rho, k_alpha, k_beta)
     V.choice("direction", direction, ("auto", "forward", "backward"))
-    rho, alpha, beta = _polar(*_in_goal_frame(p, g))
+    stop = V.nonnegative("stop_distance", stop_distance)
+    x, y, theta = _in_goal_frame(p, g)
+    rho, alpha, beta = _polar(x, y, theta)
+    near = rho < stop
     if direction == "auto":
-        back = np.abs(alpha) > _HALF_PI
+        back = (np.abs(alpha) > _HALF_PI) & ~near
     else:
-        back = np.full(np.shape(alpha), direction == "backward")
-    alpha = np.where(back, _wrap(alpha + math.pi), alpha)
-    beta = np.where(back, _wrap(beta + math.pi), beta)
+        back = np.full(np.shape(alpha), direction == "backward") & ~near
+    alpha = np.where(near, _wrap(-theta), np.where(back, _wrap(alpha + math.pi), alpha))
+    beta = np.where(near, 0.0, np.where(back, _wrap(beta + math.pi), beta))
     with np.errstate(all="ignore"):
-        v = np.where(back, -kr * rho, kr * rho)
+        v = np.where(near, 0.0, np.where(back, -kr * rho, kr * rho))
         omega = ka * alpha + kb * beta
     V.finite_result("k_rho, k_alpha, k_beta", v, omega)
     return _twist(v, omega)

@@ -171,6 +171,32 @@ def test_backwards_is_the_forward_law_on_the_half_turned_robot_and_goal():
     assert checked > 50
 
 
+def test_within_the_stop_distance_it_turns_to_the_goal_heading_as_at_the_goal():
+    near = C.move_to_pose((0.003, -0.002, 0.4), (0, 0, 0), *CORKE, stop_distance=0.005)
+    at_goal = C.move_to_pose((0.0, 0.0, 0.4), (0, 0, 0), *CORKE)
+    assert near == pytest.approx(at_goal) and near == pytest.approx((0.0, 0.0, -8 * 0.4))
+    far = C.move_to_pose((0.3, -0.2, 0.4), (0, 0, 0), *CORKE, stop_distance=0.005)
+    assert far == C.move_to_pose((0.3, -0.2, 0.4), (0, 0, 0), *CORKE)
+    behind = C.move_to_pose((0.003, 0.0, 0.0), (0, 0, 0), *CORKE, stop_distance=0.005)
+    assert behind == (0.0, 0.0, 0.0)  # not backwards: it has arrived
+
+
+def test_measurement_noise_at_the_goal_spins_the_published_law_and_not_the_stopping_one():
+    rng = np.random.default_rng(8)
+    starts = _grid(3, 4)
+    ends = {}
+    for stop in (0.0, 0.005):
+        def law(t, p, stop=stop):
+            seen = p + rng.normal(0.0, 5e-4, p.shape) * [1.0, 1.0, 0.0]
+            return C.move_to_pose(seen, (0, 0, 0), *CORKE, stop_distance=stop)
+
+        ends[stop] = C.simulate(law, starts, 12.0, 0.01, max_speed=0.5)[-1]
+    turned = np.abs(frames.wrap_angle(ends[0.0][:, 2]))
+    assert np.median(turned) > math.radians(10)  # the bearing is noise: the heading too
+    assert np.all(np.abs(frames.wrap_angle(ends[0.005][:, 2])) < math.radians(0.5))
+    assert np.all(np.hypot(ends[0.005][:, 0], ends[0.005][:, 1]) < 0.006)
+
+
 def test_direction_can_be_imposed():
     fwd = C.move_to_pose((1.0, 0.0, 0.0), (0, 0, 0), *CORKE, direction="forward")
     assert fwd.vx == 3.0  # drives away first: alpha = pi
