@@ -290,14 +290,15 @@ def sample_motion_model_odometry(previous_pose: Pose | ArrayLike, odometry: Pose
 
     Parameters
     ----------
-    previous_pose : Pose or array_like, shape (3,)
-        :math:`x_{t-1}`: m, m, rad.
+    previous_pose : Pose or array_like, shape (3,) or (n, 3)
+        :math:`x_{t-1}`: m, m, rad; a particle set (n, 3) moves each particle by one sample
+        (the particle filter's prediction step).
     odometry, previous_odometry : Pose or array_like, shape (3,)
         The odometry poses :math:`\bar x_t`, :math:`\bar x_{t-1}`: m, m, rad.
     alphas : array_like, shape (4,)
         :math:`\alpha_1 \dots \alpha_4` (each >= 0).
     n : int
-        Number of samples (>= 1).
+        Number of samples (>= 1; equal to the number of particles for a particle set).
     rng : numpy.random.Generator
         The source of the errors, e.g. ``np.random.default_rng(7)``.
 
@@ -314,11 +315,18 @@ def sample_motion_model_odometry(previous_pose: Pose | ArrayLike, odometry: Pose
     >>> s.shape, round(float(s[:, 0].mean()), 2), round(float(s[:, 0].std()), 2)
     ((100000, 3), 1.0, 0.1)
     """
-    prev = _poses("previous_pose", previous_pose, stack=False)
+    prev = _poses("previous_pose", previous_pose, stack=True)
+    if prev.ndim > 2:
+        raise ValueError(f"previous_pose must have shape (3,) or (n, 3), got shape "
+                         f"{prev.shape}")
     odo = _poses("odometry", odometry, stack=False)
     odo_prev = _poses("previous_odometry", previous_odometry, stack=False)
     a = _alphas(alphas, 4)
     count = _samples(n)
+    if prev.ndim == 2 and len(prev) != count:
+        raise ValueError(f"n must equal the number of particles in previous_pose "
+                         f"({len(prev)}), got {n!r}")
+    prev = prev.T if prev.ndim == 2 else prev
     gen = _generator(rng)
     rot1, trans, rot2 = (float(d) for d in _deltas(odo_prev, odo))
     sd = np.sqrt(_odometry_variances(a, rot1, trans, rot2))

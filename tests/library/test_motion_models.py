@@ -278,3 +278,23 @@ def test_sampler_bad_input():
     with pytest.raises(ValueError, match="twist"):
         M.sample_motion_model_velocity(PREV, (0.1, 0.2, 0.0), 1.0, [0.0] * 6, 5,
                                        np.random.default_rng())
+
+
+def test_a_particle_set_moves_each_particle_by_one_sample():
+    a = [0.05, 0.02, 0.04, 0.01]
+    particles = np.random.default_rng(9).normal(0.0, 0.1, (6, 3))
+    got = M.sample_motion_model_odometry(particles, ODO, ODO_PREV, a, 6,
+                                         np.random.default_rng(10))
+    z = np.random.default_rng(10).standard_normal((3, 6))
+    d1, dt, d2 = 0.3, 0.5, -0.2
+    s1 = math.sqrt(a[0] * d1**2 + a[1] * dt**2)
+    st = math.sqrt(a[2] * dt**2 + a[3] * (d1**2 + d2**2))
+    s2 = math.sqrt(a[0] * d2**2 + a[1] * dt**2)
+    h1, ht, h2 = d1 - s1 * z[0], dt - st * z[1], d2 - s2 * z[2]
+    heading = particles[:, 2] + h1
+    want = np.column_stack([particles[:, 0] + ht * np.cos(heading),
+                            particles[:, 1] + ht * np.sin(heading), heading + h2])
+    assert got == pytest.approx(want, abs=1e-12)
+    with pytest.raises(ValueError, match="n must equal"):
+        M.sample_motion_model_odometry(particles, ODO, ODO_PREV, a, 5,
+                                       np.random.default_rng(10))
