@@ -24,7 +24,8 @@ __all__ = ["FORMULA_MODULES", "LAYERS", "SUPPORT_MODULES", "TYPED_MODULES",
 #: The public formula modules (numpy only), in the order the book meets them.
 FORMULA_MODULES: tuple[str, ...] = (
     "units", "frames", "sources", "rover", "mecanum", "diffdrive", "odometry",
-    "odometry_uncertainty", "waypoints", "follower", "unified", "carlike", "nonholonomic",
+    "odometry_uncertainty", "motion_models", "odometry_fusion", "waypoints", "follower",
+    "unified", "carlike", "nonholonomic", "control",
 )
 
 #: The private modules the formula modules are built on (numpy only, type-checked too).

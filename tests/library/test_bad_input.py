@@ -93,6 +93,16 @@ def _good_values() -> dict:
         "f2": nonholonomic.unicycle_turn, "field": nonholonomic.unicycle_drive,
         "fields": [nonholonomic.unicycle_drive, nonholonomic.unicycle_turn],
         "epsilon": 0.1, "duration": 0.5, "max_curvature": 1.35,
+        # control
+        "k_rho": 3.0, "k_alpha": 8.0, "k_beta": -3.0, "line_point": (0.0, 0.5),
+        "line_heading": 0.3, "k_offset": 4.0, "k_heading": 4.0,
+        "reference": (0.2, 0.1, 0.4), "reference_twist": (0.3, 0.0, 0.2), "k_x": 1.0,
+        "k_y": 25.0, "k_theta": 10.0, "law": lambda t, p: np.tile([0.1, 0.0, 0.2], (len(p), 1)),
+        "start": (0.0, 0.0, 0.0),
+        # motion models and odometry fusion
+        "previous_pose": (0.0, 0.0, 0.0), "odometry": (1.0, 0.5, 0.2),
+        "previous_odometry": (0.0, 0.0, 0.0), "alphas": [0.01, 0.02, 0.03, 0.01], "n": 5,
+        "error": [0.01, -0.02, 0.003],
     }
 
 
@@ -215,6 +225,11 @@ OVERRIDES = {
     "nonholonomic.diff_drive_constraints": {"configuration": (0.1, 0.2, 0.3, 1.0, 2.0)},
     "nonholonomic.pfaffian_matrix": {"pose": (0.1, 0.2, 0.3)},
     "nonholonomic.wheel_angle_fields": {"configuration": (0.1, 0.2, 0.3, 1.0, 2.0, 3.0, 4.0)},
+    "control.follow_line": {"speed": 0.3},
+    "motion_models.sample_motion_model_odometry": {"rng": None},
+    "motion_models.sample_motion_model_velocity": {"rng": None, "alphas": [0.01] * 6,
+                                                  "twist": (0.4, 0.0, 0.2)},
+    "odometry_fusion.ekf_step": {"delta_left": 0.1, "delta_right": 0.12},
 }
 
 
@@ -230,6 +245,8 @@ def _resolve(qualname: str, kwargs: dict) -> dict:
     if qualname == "odometry_uncertainty.monte_carlo_poses":
         kwargs["rng"] = np.random.default_rng(0)
         kwargs["runs"] = 5
+    if qualname.startswith("motion_models.sample_"):
+        kwargs["rng"] = np.random.default_rng(0)
     if qualname == "waypoints.WheelCommand":
         kwargs["segment"] = waypoints.plan_segments([[0, 0], [1, 0]])[0]
     if qualname == "follower.WheelLayout":
