@@ -37,7 +37,7 @@ __all__ = ["Panel", "all_panels", "register", "slider_values"]
 
 _FACTORIES: dict[str, Callable[[], Panel]] = {}
 CHAPTER_MODULES = ("conventions", "sandbox", "rover", "mecanum", "diffdrive", "odometry",
-                   "waypoints", "unified", "carlike", "controllability")
+                   "waypoints", "unified", "carlike", "controllability", "control")
 
 
 class Panel:
