@@ -68,7 +68,7 @@ UNIT_FACTORS: tuple[tuple[float, str], ...] = (
 _REGISTRY: dict[str, Exercise] = {}
 #: Modules of this package that hold a chapter's exercises (imported on first lookup).
 CHAPTER_MODULES = ("conventions", "rover", "mecanum", "diffdrive", "odometry", "waypoints",
-                   "unified", "carlike", "sandbox", "controllability")
+                   "unified", "carlike", "sandbox", "controllability", "control")
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,8 @@
   computes it (a cast, which truncates toward zero).
 - ``odometry.choose_update``: a design: the cheapest update rule (1 Euler, 2 midpoint,
   3 exact arc) that keeps the error after half a circle within a budget.
+- ``odometry.motion_split``: Thrun's turn, line and turn between two poses.
+- ``odometry.gyro_correction``: the wheel-and-gyro filter's correction of one update.
 """
 
 from __future__ import annotations
@@ -493,4 +495,91 @@ Exercise(
         (_blind_one_wheel, "both wheels' errors add: use k_left + k_right."),
     ],
     rtol=1e-9,
+)
+
+
+# ------------------------------------------------------------------ motion models and the gyro
+
+__all__ += ["gyro_correction", "motion_split"]
+
+
+def motion_split(previous_pose: ArrayLike, pose: ArrayLike) -> NDArray[np.float64]:
+    """(rot1 rad, trans m, rot2 rad): Thrun's turn, line and turn from ``previous_pose`` to
+    ``pose`` (each (x, y, theta) in m, m, rad), both turns wrapped to (-pi, pi]."""
+    return np.array(odo.odometry_motion(previous_pose, pose))
+
+
+def _split_unwrapped(previous_pose, pose):
+    x0, y0, th0 = previous_pose
+    x1, y1, th1 = pose
+    rot1 = math.atan2(y1 - y0, x1 - x0) - th0
+    return np.array([rot1, math.hypot(x1 - x0, y1 - y0), th1 - th0 - rot1])
+
+
+def _split_world_angle(previous_pose, pose):
+    x0, y0, _ = previous_pose
+    x1, y1, th1 = pose
+    rot1 = math.atan2(y1 - y0, x1 - x0)
+    rot2 = th1 - rot1
+    return np.array([rot1, math.hypot(x1 - x0, y1 - y0),
+                     math.atan2(math.sin(rot2), math.cos(rot2))])
+
+
+Exercise(
+    "odometry.motion_split",
+    "Thrun's split (rot1 rad, trans m, rot2 rad) of the motion from previous_pose to pose, "
+    "both turns wrapped to (-pi, pi].",
+    motion_split,
+    [Case(((0.0, 0.0, 0.0), (1.0, 1.0, math.pi / 2))),
+     Case(((1.0, 2.0, 2.5), (0.2, 1.5, -2.9))),
+     Case(((0.5, -0.5, -3.0), (0.6, -0.2, 2.9)))],
+    wheel_names=("rot1", "trans", "rot2"),
+    mistakes=[
+        (_split_unwrapped, "wrap both turns to (-pi, pi]: the difference of two headings can "
+                           "leave that range."),
+        (_split_world_angle, "rot1 is measured from the robot's heading before the motion: "
+                             "atan2(y' - y, x' - x) - theta, not the direction in the world."),
+    ],
+)
+
+
+def gyro_correction(noise: ArrayLike, gyro_variance: float,
+                    innovation: float) -> NDArray[np.float64]:
+    """The EKF's correction (dx m, dy m, dtheta rad) of the predicted pose by one gyro turn:
+    ``noise[:, 2] * innovation / (noise[2, 2] + gyro_variance)``, with ``noise`` the 3 x 3
+    covariance of this update's wheel errors, ``innovation`` the gyro's turn minus the
+    wheels' (rad) and ``gyro_variance`` its variance (rad^2)."""
+    n = np.asarray(noise, dtype=float)
+    return n[:, 2] * float(innovation) / (n[2, 2] + float(gyro_variance))
+
+
+def _no_gyro_variance(noise, gyro_variance, innovation):
+    n = np.asarray(noise, dtype=float)
+    return n[:, 2] * float(innovation) / n[2, 2]
+
+
+def _heading_only(noise, gyro_variance, innovation):
+    n = np.asarray(noise, dtype=float)
+    return np.array([0.0, 0.0, n[2, 2] * float(innovation) / (n[2, 2] + gyro_variance)])
+
+
+_NOISE_A = [[2.5e-9, 1.1e-8, 2.9e-7], [1.1e-8, 5.2e-8, 1.3e-6], [2.9e-7, 1.3e-6, 3.0e-5]]
+_NOISE_B = [[4.0e-9, -2.0e-8, -5.0e-7], [-2.0e-8, 1.2e-7, 2.4e-6], [-5.0e-7, 2.4e-6, 5.5e-5]]
+
+Exercise(
+    "odometry.gyro_correction",
+    "The pose correction (dx m, dy m, dtheta rad) the wheel-and-gyro EKF adds for one update, "
+    "from the update's wheel-noise covariance, the gyro's variance and the innovation.",
+    gyro_correction,
+    [Case((_NOISE_A, 7.4e-10, 0.01)), Case((_NOISE_B, 1e-5, -0.02)),
+     Case((_NOISE_A, 3e-5, 0.003))],
+    wheel_names=("dx", "dy", "dtheta"),
+    mistakes=[
+        (_no_gyro_variance, "the innovation's variance is the wheels' heading noise plus the "
+                            "gyro's: S = N[2, 2] + gyro_variance."),
+        (_heading_only, "the correction moves the position too, along N[:, 2]: the wheels' "
+                        "heading error of this update also moved the robot sideways."),
+    ],
+    rtol=1e-6,
+    atol=1e-15,
 )
