@@ -97,7 +97,6 @@ def _good_values() -> dict:
         # sensors
         "steps_per_rev": 100.0, "noise": 0.5, "seed": 3, "step": [0, 1],
         "counts": [[1, 2], [3, -4]], "noise_density": 2e-4, "bias": 0.001, "interval": 0.02,
-        "t": [0.0, 0.02, 0.04], "heading": [0.0, 0.01, 0.015],
         # render
         "steering": None, "show_icr": True, "labels": True, "color": "#1f77b4", "alpha": 1.0,
         "zorder": 3.0, "slipping": [False, True], "trajectory": traj, "plan": [[0, 0], [1, 0]],
@@ -317,6 +316,7 @@ OVERRIDES = {
     "render.SandboxAnimation": {"fig": "_fig"},
     "sensors.Encoder": {"n": 2},
     "sensors.Encoder.counts": {"angles": [[0.1, 0.2], [0.3, -0.4]]},
+    "sensors.Gyro.turns": {"t": [0.0, 0.02, 0.04], "heading": [0.0, 0.01, 0.015]},
     "widgets.sandbox.SlipView": {"fig": "_fig"},
     "vehicles.VehicleSpec": {"name": "spec", "mass": 0.25, "inertia": 0.001},
     "vehicles.VehicleSpec.steering_of": {"steering": [0.1, -0.1, -0.1, 0.1]},
