@@ -170,7 +170,7 @@ MUTANTS = [
     ("control", "control", "pose law: beta with the sign of alpha",
      "beta = _wrap(-theta - alpha)", "beta = _wrap(-theta + alpha)"),
     ("control", "control", "backwards: beta not turned half a turn",
-     "beta = np.where(back, _wrap(beta + math.pi), beta)", "beta = np.where(back, beta, beta)"),
+     "np.where(back, _wrap(beta + math.pi), beta)", "np.where(back, beta, beta)"),
     ("control", "control", "gains: k_alpha > 0 accepted for k_alpha - k_rho > 0",
      "if not ka - kr > 0:", "if not ka > 0:"),
     ("control", "control", "line: the offset to the right counted positive",
