@@ -1,18 +1,19 @@
 r"""Wheel odometry and a gyro in one extended Kalman filter, and the test of its honesty.
 
-The prediction is the book's own covariance step (:func:`wheelkin.odometry_uncertainty
-.propagate_covariance`: the exact arc update and :math:`\Sigma' = F_p\Sigma F_p^\mathsf{T} +
-F_w Q F_w^\mathsf{T}`). A rate gyro, integrated over the same update, measures the turn of
-the step, :math:`z = \theta_{k+1} - \theta_k + n`, :math:`n \sim \mathcal N(0, r)`: a
-measurement of a *change* of the state, which depends on the state before the step as well
-as after it. The filter keeps a copy of the heading before the step in its state (stochastic
-cloning, :cite:t:`roumeliotis2002`) so that the update is an ordinary Kalman update of the
-augmented state :math:`(x_{k+1}, y_{k+1}, \theta_{k+1}, \theta_k)` with
-:math:`H = (0, 0, 1, -1)`; the copy is dropped after the update. The chapter "Odometry:
-where am I?" derives it (section "Odometry and a gyro") and shows that the update reduces to
+The prediction is the book's own covariance step
+(:func:`~wheelkin.odometry_uncertainty.propagate_covariance`: the exact arc update and
+:math:`\Sigma' = F_p\Sigma F_p^\mathsf{T} + F_w Q F_w^\mathsf{T}`). A rate gyro, integrated
+over the same update, measures the turn of the step, :math:`z = \theta_{k+1} - \theta_k + n`,
+:math:`n \sim \mathcal N(0, \sigma_z^2)`: a measurement of a *change* of the state, which
+depends on the state before the step as well as after it. The filter keeps a copy of the
+heading before the step in its state (stochastic cloning, :cite:t:`roumeliotis2002`) so that
+the update is an ordinary Kalman update of the augmented state
+:math:`(x_{k+1}, y_{k+1}, \theta_{k+1}, \theta_k)` with :math:`\mathbf h = (0, 0, 1, -1)`; the
+copy is dropped after the update. The chapter "Odometry: where am I?" derives it (section
+"Odometry and a gyro") and shows that the update reduces to
 
 .. math::
-    \mathbf c = (F_w Q F_w^\mathsf{T})_{:,3},\quad S = c_3 + r,\quad
+    \mathbf c = (F_w Q F_w^\mathsf{T})_{:,3},\quad S = c_3 + \sigma_z^2,\quad
     x^+ = x^- + \mathbf c\,\frac{z - \Delta\theta_w}{S},\quad
     \Sigma^+ = \Sigma^- - \frac{\mathbf c\,\mathbf c^\mathsf{T}}{S},
 
@@ -104,11 +105,13 @@ def ekf_step(pose: Pose | ArrayLike, covariance: ArrayLike, delta_left: float,
     :math:`\Sigma^- = F_p\Sigma F_p^\mathsf{T} + F_w Q F_w^\mathsf{T}`,
     :math:`Q = \operatorname{diag}(k_L|\Delta s_L|, k_R|\Delta s_R|)`.
 
-    **Update** with the gyro's turn :math:`z` over the step (variance :math:`r`): the
+    **Update** with the gyro's turn :math:`z` over the step (variance :math:`\sigma_z^2`): the
     augmented state :math:`(x^-, \theta)` has the covariance
     :math:`\begin{pmatrix}\Sigma^- & F_p\Sigma_{:,3}\\ \cdot & \Sigma_{33}\end{pmatrix}`; with
-    :math:`H = (0, 0, 1, -1)`, :math:`S = H P H^\mathsf{T} + r`, :math:`K = P H^\mathsf{T}/S`,
-    the Joseph form :math:`P^+ = (I - KH)P(I - KH)^\mathsf{T} + rKK^\mathsf{T}`, and the
+    :math:`\mathbf h = (0, 0, 1, -1)`, :math:`S = \mathbf h P \mathbf h^\mathsf{T} + \sigma_z^2`,
+    the gain :math:`\mathbf g = P\mathbf h^\mathsf{T}/S`, the Joseph form
+    :math:`P^+ = (I - \mathbf g\mathbf h)P(I - \mathbf g\mathbf h)^\mathsf{T}
+    + \sigma_z^2\mathbf g\mathbf g^\mathsf{T}`, and the
     pose and its covariance are the first three entries. Without a gyro reading
     (``gyro_turn=None``) the step is the prediction alone.
 
@@ -127,7 +130,7 @@ def ekf_step(pose: Pose | ArrayLike, covariance: ArrayLike, delta_left: float,
     gyro_turn : float, optional
         The gyro's yaw rate integrated over the step, rad (None: no reading).
     gyro_variance : float
-        :math:`r`, rad² (> 0): for white rate noise of density :math:`\sigma_g`
+        :math:`\sigma_z^2`, rad² (> 0): for white rate noise of density :math:`\sigma_g`
         (rad/s/√Hz) over a step of :math:`T` seconds, :math:`\sigma_g^2 T`.
 
     Returns
