@@ -96,7 +96,7 @@ def _good_values() -> dict:
         "controller": lambda t, world: None,
         # sensors
         "steps_per_rev": 100.0, "noise": 0.5, "seed": 3, "step": [0, 1],
-        "counts": [[1, 2], [3, -4]], "noise_density": 2e-4, "bias": 0.001, "interval": 0.02,
+        "counts": [[1, 2], [3, -4]], "noise_density": 2e-4, "bias": 0.001,
         # render
         "steering": None, "show_icr": True, "labels": True, "color": "#1f77b4", "alpha": 1.0,
         "zorder": 3.0, "slipping": [False, True], "trajectory": traj, "plan": [[0, 0], [1, 0]],
