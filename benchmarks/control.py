@@ -11,7 +11,7 @@ jumps. Four variants of what the controller sees and does: the true pose or an o
 camera's (noise 1 mm and 0.2 degrees, standard deviations); the law as published, or with a
 stop distance of 5 mm (`wheelkin.control.move_to_pose(..., stop_distance=0.005)`).
 
-Usage: ``python benchmarks/control.py [--no-write]``; writes the "Driving to a pose" section
+Usage: ``python -m benchmarks.control [--no-write]``; writes the "Driving to a pose" section
 of benchmarks/RESULTS.md (between its markers).
 """
 
@@ -23,10 +23,10 @@ import math
 import os
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
+from tools.results import cpu, markers, write_section
 from wheelkin import control
 from wheelkin.sandbox import RADON_ULZER
 from wheelkin.widgets.control import (
@@ -37,9 +37,6 @@ from wheelkin.widgets.control import (
     start_grid,
     unicycle_commands,
 )
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _results import cpu, markers, write_section
 
 BEGIN, END = markers("control")
 DURATION, PERIOD = 10.0, 0.02  # s
@@ -98,7 +95,7 @@ def main(argv=None) -> int:
         f"Machine: {cpu()}, numpy {np.__version__}. Date: {_dt.date.today().isoformat()}. "
         f"Load average (1, 5, 15 min) before: {', '.join(f'{x:.1f}' for x in before)}; "
         f"after: {', '.join(f'{x:.1f}' for x in after)}. "
-        "Produced by `python benchmarks/control.py`.",
+        "Produced by `python -m benchmarks.control`.",
         "",
         f"The pose controller (`wheelkin.control.move_to_pose`, Corke's gains (3, 8, -3) 1/s) "
         f"from {len(starts)} start poses (positions every 0.2 m within 0.5 m of the goal, eight "

@@ -6,7 +6,7 @@ velocity model's sampler (`sample_motion_model_velocity`, table 5.3) and the den
 (`motion_model_odometry`, table 5.5) at 100,000 hypotheses. Each measurement is repeated
 ``--repeat`` times; the best and the median are reported, with the load average.
 
-Usage: ``python benchmarks/motion_models.py [--repeat 21] [--no-write]``; writes the "Motion
+Usage: ``python -m benchmarks.motion_models [--repeat 21] [--no-write]``; writes the "Motion
 models" section of benchmarks/RESULTS.md (between its markers).
 """
 
@@ -18,15 +18,12 @@ import os
 import statistics
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
+from tools.results import cpu, markers, write_section
 from wheelkin import frames
 from wheelkin import odometry as odo
-
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _results import cpu, markers, write_section
 
 BEGIN, END = markers("motion_models")
 BUDGET_S = 0.1
@@ -78,7 +75,7 @@ def main(argv=None) -> int:
         f"Machine: {cpu()}, numpy {np.__version__}. Date: {_dt.date.today().isoformat()}. "
         f"Load average (1, 5, 15 min) before: {', '.join(f'{x:.1f}' for x in before)}; "
         f"after: {', '.join(f'{x:.1f}' for x in after)}. "
-        "Produced by `python benchmarks/motion_models.py`.",
+        "Produced by `python -m benchmarks.motion_models`.",
         "",
         f"{SAMPLES:,} samples (or hypotheses) of one motion, repeated {args.repeat} times.",
         "",
