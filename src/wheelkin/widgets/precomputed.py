@@ -105,6 +105,8 @@ GRIDS: dict[str, Grid] = {grid.panel: grid for grid in (
                                        ("vehicle", ("car", "differential drive")))),
     Grid("carlike.pure_pursuit", (("bearing_deg", _span(-60.0, 60.0, 10.0)),
                                   ("lookahead", (0.2, 0.4, 0.6, 0.8, 1.0, 1.2, 1.5)))),
+    Grid("control.pose", (("heading_deg", _span(-180.0, 150.0, 30.0)),
+                          ("k_beta", (-8.0, -6.0, -4.0, -3.0, -2.0, -1.0, -0.5)))),
 )}
 
 
