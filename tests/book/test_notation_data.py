@@ -70,10 +70,12 @@ def token_pattern(token: str) -> re.Pattern:
     """A token as a whole symbol inside math: not a part of a command or a longer name, not a
     subscript or an exponent, not followed by a subscript (``T_w`` is another symbol), and a
     plain letter not in bold (``\\mathbf u_i``, a roller's axis, is not ``u_i``, an input) nor
-    upright (``\\mathrm{m/s}`` is a unit, not a mass)."""
+    upright (``\\mathrm{m/s}`` is a unit, not a mass) nor calligraphic (``\\mathcal V``, a
+    Lyapunov function, is not ``V``, a rim speed)."""
     body = re.escape(token)
     bold = "" if token.startswith("\\") else (r"(?<!\\mathbf )(?<!\\mathbf\{)(?<!\\boldsymbol\{)"
-                                              r"(?<!\\mathrm\{)(?<!\\text\{)")  # a unit: m/s
+                                              r"(?<!\\mathrm\{)(?<!\\text\{)"  # a unit: m/s
+                                              r"(?<!\\mathcal )(?<!\\mathcal\{)")  # another letter
     return re.compile(rf"(?<![\\A-Za-z_^]){bold}{body}(?![A-Za-z_])")
 
 
