@@ -8,7 +8,7 @@ Each controller takes the robot's pose (or a stack of poses) and returns the bod
 ========================= ==================================================================
 law                       what it drives to zero
 ========================= ==================================================================
-:func:`move_to_pose`      the polar coordinates :math:`(\rho, \alpha, \beta)` of the robot
+:func:`move_to_pose`      the polar coordinates :math:`(\rho, \alpha, \beta_g)` of the robot
                           seen from a goal pose (Astolfi; Siegwart et al. section 3.6.2.4;
                           Corke section 4.1.1.4)
 :func:`follow_line`       the signed distance to a line and the heading error to it
@@ -22,7 +22,7 @@ held over each control period) for a stack of start poses at once.
 
 Symbols (as in ``book/notation.md``): :math:`\rho` the distance from the robot's reference
 point to the goal; :math:`\alpha` the bearing of the goal from the robot's heading (the same
-angle pure pursuit calls :math:`\alpha`); :math:`\beta = -\theta - \alpha` the direction from
+angle pure pursuit calls :math:`\alpha`); :math:`\beta_g = -\theta - \alpha` the direction from
 which the robot approaches, measured from the goal's heading; :math:`k_\rho, k_\alpha,
 k_\beta` the pose controller's gains.
 """
@@ -68,7 +68,7 @@ class PolarCoordinates(NamedTuple):
     rho: float | np.ndarray
     #: :math:`\alpha`, rad in :math:`(-\pi, \pi]`: the bearing of the goal from the heading.
     alpha: float | np.ndarray
-    #: :math:`\beta = -\theta - \alpha`, rad in :math:`(-\pi, \pi]`, :math:`\theta` the
+    #: :math:`\beta_g = -\theta - \alpha`, rad in :math:`(-\pi, \pi]`, :math:`\theta` the
     #: robot's heading in the goal's frame.
     beta: float | np.ndarray
 
@@ -145,13 +145,13 @@ def polar_coordinates(pose: Pose | ArrayLike, goal: Pose | ArrayLike) -> PolarCo
     .. math::
         \rho = \sqrt{x^2 + y^2},\qquad
         \alpha = \operatorname{wrap}\big(\operatorname{atan2}(-y, -x) - \theta\big),\qquad
-        \beta = \operatorname{wrap}(-\theta - \alpha)
+        \beta_g = \operatorname{wrap}(-\theta - \alpha)
 
     :math:`\alpha` is the bearing of the goal from the robot's heading, and
-    :math:`-\beta` the direction of the line from the robot to the goal, measured from the
+    :math:`-\beta_g` the direction of the line from the robot to the goal, measured from the
     goal's heading. At the goal (:math:`\rho = 0`) the bearing is undefined; the function
     takes :math:`\operatorname{atan2}(0, 0) = 0`, so :math:`\alpha = \operatorname{wrap}(-\theta)`
-    and :math:`\beta = 0`. Angles are wrapped to :math:`(-\pi, \pi]`.
+    and :math:`\beta_g = 0`. Angles are wrapped to :math:`(-\pi, \pi]`.
 
     Parameters
     ----------
@@ -213,15 +213,15 @@ def move_to_pose(pose: Pose | ArrayLike, goal: Pose | ArrayLike, k_rho: float, k
     In the polar coordinates of :func:`polar_coordinates`,
 
     .. math::
-        v = k_\rho\,\rho,\qquad \omega = k_\alpha\,\alpha + k_\beta\,\beta .
+        v = k_\rho\,\rho,\qquad \omega = k_\alpha\,\alpha + k_\beta\,\beta_g .
 
     With :math:`v` and :math:`\omega` from this law the closed loop is (chapter "Driving to
     a pose")
 
     .. math::
         \dot\rho = -k_\rho\rho\cos\alpha,\quad
-        \dot\alpha = k_\rho\sin\alpha - k_\alpha\alpha - k_\beta\beta,\quad
-        \dot\beta = -k_\rho\sin\alpha,
+        \dot\alpha = k_\rho\sin\alpha - k_\alpha\alpha - k_\beta\beta_g,\quad
+        \dot\beta_g = -k_\rho\sin\alpha,
 
     whose linearisation at the goal has the eigenvalues :math:`-k_\rho` and the roots of
     :math:`\lambda^2 + (k_\alpha - k_\rho)\lambda - k_\rho k_\beta`: all in the left half
@@ -230,9 +230,9 @@ def move_to_pose(pose: Pose | ArrayLike, goal: Pose | ArrayLike, k_rho: float, k
     .. math:: k_\rho > 0,\qquad k_\beta < 0,\qquad k_\alpha - k_\rho > 0 .
 
     Gains outside these conditions are refused (``ValueError`` naming them). The same
-    conditions make :math:`V = 1 - \cos\alpha - \tfrac{k_\beta}{2k_\rho}\beta^2` a Lyapunov
-    function of the angles (:math:`\dot V = -\alpha\sin\alpha\,(k_\alpha - k_\rho\sin\alpha/
-    \alpha) \le 0`).
+    conditions make :math:`\mathcal V = 1 - \cos\alpha - \tfrac{k_\beta}{2k_\rho}\beta_g^2`
+    a Lyapunov function of the angles (:math:`\dot{\mathcal V} = -\alpha\sin\alpha\,(k_\alpha
+    - k_\rho\sin\alpha/\alpha) \le 0`).
 
     **Driving backwards.** When the goal lies behind the robot, :math:`|\alpha| > \pi/2`, the
     robot drives backwards, as :cite:t:`siegwart2011` do: the law is applied to the robot
@@ -242,7 +242,7 @@ def move_to_pose(pose: Pose | ArrayLike, goal: Pose | ArrayLike, k_rho: float, k
     .. math::
         v = -k_\rho\,\rho,\qquad
         \omega = k_\alpha\operatorname{wrap}(\alpha + \pi)
-                 + k_\beta\operatorname{wrap}(\beta + \pi),
+                 + k_\beta\operatorname{wrap}(\beta_g + \pi),
 
     and ends at the same pose, facing the goal's heading. ``direction="forward"`` or
     ``"backward"`` imposes the direction instead (a controller that decides once at the start

@@ -272,7 +272,7 @@ class PoseView:
         done = bool(converged(path[-1]))
         self.text.set_text(
             f"start: ρ = {rho:.2f} m\n"
-            f"α = {math.degrees(alpha):+.0f}°, β = {math.degrees(beta):+.0f}°\n\n"
+            f"α = {math.degrees(alpha):+.0f}°, $\\beta_g$ = {math.degrees(beta):+.0f}°\n\n"
             f"poles: {-k_rho:+.2f}\n{poles}\n\n"
             f"after {_SIM_SECONDS:.0f} s: {'at the goal' if done else 'not there'}")
         return self.artists
