@@ -9,6 +9,18 @@ shows a traceback and never raises: a notebook cell that calls it always runs.
 Each chapter registers its exercises in a module of this package (``wheelkin.exercises.rover``
 and so on); :func:`get` finds one by name, loading those modules on first use.
 
+The instructor's grader (``tools/grade.py``) uses three more things an exercise declares:
+
+- ``library``: the parts of ``wheelkin`` the student's function may use (dotted names such as
+  ``"wheelkin.carlike.linkage_error"``; none by default). The grader calls the student's
+  function where only these parts, and what they need, can be imported; the exercise's
+  statement must say so.
+- ``hidden``: a function of a random generator that returns the hidden cases (inputs the
+  notebook does not show). By default :meth:`Exercise.hidden_cases` varies the visible cases'
+  floats; an exercise whose inputs are whole numbers, words or arrays gives its own.
+- ``judge_seconds`` and ``judge_memory`` (class attributes): the time and memory the grader
+  grants the exercise's judge; an exercise that judges by simulating raises them.
+
 >>> def ref(x):
 ...     return 2.0 * x
 >>> ex = Exercise("demo.double", "Double a number.", ref, [Case((1.0,)), Case((3.0,))],
@@ -38,6 +50,7 @@ from wheelkin._registry import load_chapter_modules
 __all__ = [
     "UNIT_FACTORS",
     "Case",
+    "HiddenCases",
     "CheckResult",
     "Exercise",
     "all_exercises",
@@ -113,6 +126,11 @@ class CheckResult:
             raise AssertionError(self.message)
 
 
+#: An exercise's own hidden cases: a function of a NumPy random generator (seeded by the grader
+#: from a secret drawn per grading run) that returns the cases to try.
+HiddenCases = Callable[[np.random.Generator], Sequence[Case]]
+
+
 class Exercise:
     """An exercise: a reference function and the cases on which a student's answer is tried.
 
@@ -135,7 +153,27 @@ class Exercise:
         the message ``str`` is shown.
     rtol, atol : float
         Tolerances of the comparison.
+    library : sequence of str, optional
+        The parts of ``wheelkin`` the student's function may use when graded, as dotted names
+        (``"wheelkin.carlike.linkage_error"``, ``"wheelkin.exercises.unified.CANDIDATES"``);
+        the grader makes only these (and what they need) importable. Default: none, the
+        student writes everything. The exercise's statement must name them.
+    hidden : callable, optional
+        ``hidden(rng)`` returns the hidden cases, drawn with the NumPy generator ``rng``. Give
+        it when the inputs are not floats to vary (whole numbers, words, arrays, a finite
+        set); by default :meth:`hidden_cases` varies the visible cases' floats.
+
+    Attributes
+    ----------
+    judge_seconds, judge_memory : float, int
+        The grader's limits for judging one student's answers to every case (seconds, bytes).
+        A subclass whose judge runs a simulation sets larger ones.
     """
+
+    #: Seconds the grader grants :meth:`check` on the recorded answers (every case).
+    judge_seconds: float = 10.0
+    #: Bytes of memory the grader grants the judge.
+    judge_memory: int = 2 * 2**30
 
     def __init__(
         self,
@@ -148,10 +186,17 @@ class Exercise:
         mistakes: Sequence[tuple[Callable, str]] = (),
         rtol: float = 1e-6,
         atol: float = 1e-9,
+        library: Sequence[str] = (),
+        hidden: HiddenCases | None = None,
         register: bool = True,
     ) -> None:
         if not cases:
             raise ValueError("cases must contain at least one Case")
+        for part in library:
+            if not (isinstance(part, str) and part.startswith("wheelkin.")
+                    and part.count(".") >= 2):
+                raise ValueError("library must name parts of wheelkin as "
+                                 f"'wheelkin.module.name', got {part!r}")
         self.name = name
         self.prompt = prompt
         self.reference = reference
@@ -160,6 +205,8 @@ class Exercise:
         self.mistakes = list(mistakes)
         self.rtol = rtol
         self.atol = atol
+        self.library = tuple(library)
+        self.hidden = hidden
         try:
             self.arg_names = list(inspect.signature(reference).parameters)
         except (TypeError, ValueError):  # pragma: no cover - builtins without a signature
@@ -208,6 +255,57 @@ class Exercise:
             if problem is not None:
                 return problem
         return CheckResult(self.name, True, self._passed(), "pass")
+
+    def hidden_cases(self, rng: np.random.Generator, per_case: int = 2) -> list[Case]:
+        """Cases the student never sees, drawn with ``rng``.
+
+        The exercise's own ``hidden(rng)`` when it has one; otherwise each visible case
+        ``per_case`` times with its floats changed by 5-25 %, each kept inside the range the
+        visible cases span for that argument (so that a hidden case stays in the regime the
+        exercise asks about: a turn stays a turn, a limit is not crossed); whole numbers,
+        words and infinite values are kept. A case that repeats a visible one, or whose
+        reference answer is not defined (raises, NaN, a different shape than its visible
+        case's), is dropped.
+
+        >>> ex = Exercise("demo.half", "Half.", lambda x: x / 2, [Case((1.0,)), Case((3.0,))],
+        ...               register=False)
+        >>> hidden = ex.hidden_cases(np.random.default_rng(1))
+        >>> len(hidden), all(1.0 <= c.args[0] <= 3.0 for c in hidden)
+        (4, True)
+        """
+        seen = {repr(c) for c in self.cases}
+        if self.hidden is not None:
+            out = []
+            for case in self.hidden(rng):
+                if not isinstance(case, Case):
+                    raise TypeError(f"{self.name}: hidden(rng) must return Case objects, got "
+                                    f"{type(case).__name__}")
+                if repr(case) not in seen and _defined(self, case) is not None:
+                    seen.add(repr(case))
+                    out.append(case)
+            return out
+        hulls = _hulls(self.cases)
+        out = []
+        for case in self.cases:
+            base = _defined(self, case)
+            if base is None:  # pragma: no cover - a visible case the reference rejects
+                continue
+            for _ in range(per_case):
+                args = tuple(_perturb(v, 1.0 + rng.uniform(0.05, 0.25), hulls.get(i))
+                             for i, v in enumerate(case.args))
+                kwargs = {k: _perturb(v, 1.0 + rng.uniform(0.05, 0.25), hulls.get(k))
+                          for k, v in case.kwargs.items()}
+                new = Case(args, kwargs)
+                if repr(new) in seen:
+                    continue  # nothing could change
+                want = _defined(self, new)
+                if want is None or want.shape != base.shape:
+                    continue
+                if np.any(~np.isfinite(want) & np.isfinite(base)):
+                    continue
+                seen.add(repr(new))
+                out.append(new)
+        return out
 
     def _passed(self) -> str:
         """The message of a check that every case passed."""
@@ -283,6 +381,42 @@ class Exercise:
         if not np.allclose(rev, expected) and self._close(got, rev):
             return "the order is reversed."
         return None
+
+
+def _defined(exercise: Exercise, case: Case) -> np.ndarray | None:
+    """The reference's answer to ``case`` as a float array, or None where it is not defined
+    (raises, or contains NaN)."""
+    try:
+        value = _as_array(exercise.reference(*copy.deepcopy(case.args),
+                                             **copy.deepcopy(case.kwargs)))
+    except Exception:
+        return None
+    return None if np.any(np.isnan(value)) else value
+
+
+def _hulls(cases: Sequence[Case]) -> dict:
+    """Per argument (position or keyword): the (min, max) of its finite floats over ``cases``."""
+    hulls: dict = {}
+    for case in cases:
+        for key, value in [*enumerate(case.args), *case.kwargs.items()]:
+            if isinstance(value, bool) or not isinstance(value, (float, np.floating)):
+                continue
+            if math.isfinite(value):
+                lo, hi = hulls.get(key, (value, value))
+                hulls[key] = (min(lo, value), max(hi, value))
+    return hulls
+
+
+def _perturb(value, factor: float, hull):
+    """``value`` times ``factor`` (or divided by it) if that stays inside ``hull``, the range
+    the visible cases span; else unchanged. Only finite floats change."""
+    if (hull is None or isinstance(value, bool)
+            or not isinstance(value, (float, np.floating)) or not math.isfinite(value)):
+        return value
+    for new in (value * factor, value / factor):
+        if hull[0] <= new <= hull[1]:
+            return type(value)(new)
+    return value
 
 
 def _as_array(value) -> np.ndarray:

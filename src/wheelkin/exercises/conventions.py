@@ -35,9 +35,11 @@ def rover_radius(radius_in: float) -> float:
 Exercise(
     "conventions.rover_radius",
     "Convert the rover document's turning radius radius_in (inches, r > 0 turns right) to our "
-    "signed turning radius in metres (R > 0 turns left); an infinite radius stays infinite.",
+    "signed turning radius in metres (R > 0 turns left); an infinite radius stays infinite. "
+    "It may use units.INCH, no other part of the library.",
     rover_radius,
     [Case((30.0,)), Case((-30.0,)), Case((250.0,)), Case((-17.754,)), Case((math.inf,))],
+    library=("wheelkin.units.INCH",),
     mistakes=[
         (lambda radius_in: radius_in * 0.0254,
          "the size is right but not the side: the rover's r > 0 turns right, our R > 0 turns "
@@ -157,10 +159,12 @@ def mecanum_twist(Vx_ftps: float, Vy_ftps: float, omega: float) -> NDArray[np.fl
 Exercise(
     "conventions.mecanum_twist",
     "Convert the mecanum simulator's body twist (Vx_ftps to the right, Vy_ftps forward, in "
-    "ft/s; omega in rad/s) to our twist [vx, vy, omega] in m/s and rad/s.",
+    "ft/s; omega in rad/s) to our twist [vx, vy, omega] in m/s and rad/s. It may use "
+    "units.FOOT, no other part of the library.",
     mecanum_twist,
     [Case((0.0, 10.0, 0.0)), Case((2.0, 0.0, 0.0)), Case((1.0, 3.0, 0.5)),
      Case((-2.0, 1.5, -1.2))],
+    library=("wheelkin.units.FOOT",),
     wheel_names=("vx", "vy", "omega"),
     mistakes=[
         (lambda Vx_ftps, Vy_ftps, omega: [Vx_ftps * 0.3048, Vy_ftps * 0.3048,
@@ -224,6 +228,8 @@ Exercise(
     heading_error,
     [Case(_heading_series(2.0, 1.5, 0.0)), Case(_heading_series(-1.0, 1.02, 0.4)),
      Case(_heading_series(3.0, 0.9, -0.2)), Case(_heading_series(0.25, 1.0, 0.05))],
+    hidden=lambda rng: [Case(_heading_series(rng.uniform(-3.0, 3.0), rng.uniform(0.85, 1.5),
+                                             rng.uniform(-0.4, 0.4))) for _ in range(4)],
     mistakes=[
         (_wrapped_error, "you wrapped the error: a robot that counted a whole turn too many "
                          "would show an error of 0. Report the difference of the unwrapped "

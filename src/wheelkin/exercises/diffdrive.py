@@ -56,6 +56,10 @@ Exercise(
     "track width W in mm and the encoder's steps per metre.",
     wheel_speeds_steps,
     [Case((1000, 1000, 85, 8043)), Case((0, -2500, 85, 8043)), Case((-400, 300, 120, 5000))],
+    # Firmware units are whole numbers: draw them, in the ranges the visible cases span.
+    hidden=lambda rng: [Case((int(rng.integers(-2500, 2501)), int(rng.integers(-2500, 2501)),
+                              int(rng.integers(60, 151)), int(rng.integers(4000, 9001))))
+                        for _ in range(4)],
     wheel_names=_WHEELS,
     mistakes=[
         (lambda v, w, b, e: (v / 2 - _turn(w, b, e, 1e-6), v / 2 + _turn(w, b, e, 1e-6)),
@@ -81,6 +85,8 @@ Exercise(
     "steps_per_m still fits in a signed 32-bit integer.",
     omega_limit,
     [Case((85, 8043)), Case((150, 4000)), Case((100, 20000)), Case((60, 1000))],
+    hidden=lambda rng: [Case((int(rng.integers(60, 151)), int(rng.integers(1000, 20001))))
+                        for _ in range(4)],
     rtol=0.0,
     atol=0.0,
     mistakes=[

@@ -105,8 +105,11 @@ class RampExercise(Exercise):
     The answer ``T`` passes a case when the ramp of length ``T`` grips and the ramp of length
     ``T / SLACK`` slips (so ``T`` is no more than ``SLACK`` times the shortest gripping ramp);
     when the steady turn slips, only ``math.inf`` passes. ``reference`` (the closed form)
-    and ``mistakes`` serve the messages only.
+    and ``mistakes`` serve the messages only. Each case runs the sandbox for the ramp asked,
+    so the grader grants this judge more time than a comparison needs.
     """
+
+    judge_seconds = 30.0
 
     def _passed(self) -> str:
         return (f"✔ {self.name}: every ramp grips and none is more than {SLACK:g}× longer "
@@ -166,11 +169,13 @@ RampExercise(
     "sandbox.grip_ramp_time",
     "The length T (s) of a linear ramp from rest to the twist (v, 0, omega) that the Radon "
     "Ulzer drives on friction mu without a wheel slipping, at most 1.5 times the shortest "
-    "such ramp; math.inf when no ramp grips.",
+    "such ramp; math.inf when no ramp grips. It may use RADON_ULZER (its mass and inertia), "
+    "no other part of the library.",
     grip_ramp_time,
     [Case((0.5, 3.0, 0.8)), Case((0.4, 1.0, 0.1)), Case((0.4, 0.0, 0.1)),
      Case((0.4, -2.0, 0.3)), Case((0.0, 6.0, 0.3)), Case((0.6, 4.0, 0.5)),
      Case((0.4, 2.5, 0.1)), Case((0.5, 2.98, 0.2))],
+    library=("wheelkin.sandbox.RADON_ULZER",),
     mistakes=[
         (lambda v, omega, mu: _ramp_time(v, omega, mu, turn=False),
          "the turn is ignored. Driving and turning share one friction circle: the sideways "
