@@ -50,9 +50,9 @@ from wheelkin._registry import load_chapter_modules
 __all__ = [
     "UNIT_FACTORS",
     "Case",
-    "HiddenCases",
     "CheckResult",
     "Exercise",
+    "HiddenCases",
     "all_exercises",
     "check",
     "get",
@@ -251,7 +251,11 @@ class Exercise:
         for case in self.cases:
             where = case.describe(self.arg_names)
             raw = self._answer(fn, case, where)
-            problem = raw if isinstance(raw, CheckResult) else self._judge(case, where, raw)
+            try:
+                problem = raw if isinstance(raw, CheckResult) else self._judge(case, where, raw)
+            except Exception as exc:  # an answer the judge cannot even handle
+                problem = self._fail("wrong", f"for {where} your answer {_fmt(raw)} could not "
+                                     f"be checked ({type(exc).__name__}: {exc})")
             if problem is not None:
                 return problem
         return CheckResult(self.name, True, self._passed(), "pass")
