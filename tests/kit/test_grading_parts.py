@@ -1,0 +1,281 @@
+"""The grader's parts that need no sandbox (tools/grading/): the slice of a notebook a
+function needs, the check that counts, the library parts an exercise may use, the data that
+crosses a sandbox's wall, the assignment file, the student ids of a folder, Gradescope's
+results.json, and the command that makes a sandbox."""
+
+from __future__ import annotations
+
+import ast
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import nbformat
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+import grade  # noqa: E402
+from grading import jail, library_parts, wire  # noqa: E402
+from grading import notebook as nbtools  # noqa: E402
+from grading.assignment import AssignmentError, for_notebook, parse  # noqa: E402
+from grading.source import needed_statements, statements_of  # noqa: E402
+
+from wheelkin.exercises import all_exercises  # noqa: E402
+
+
+def _slice(code: str, names: set[str]) -> list[str]:
+    return [src.strip() for _, src in needed_statements(statements_of(code), names)]
+
+
+# ----------------------------------------------------------------------------- the slice
+
+def test_slice_keeps_what_the_function_needs_and_nothing_else():
+    code = ("import math, os\nimport numpy as np\nK = 2\nPLOT = expensive_figure()\n"
+            "def helper(x):\n    return K * x\n"
+            "def f(x):\n    return helper(math.sqrt(x)) + np.pi\n"
+            "K = 4\nprint(f(2))\n")
+    assert _slice(code, {"f"}) == [
+        "import math", "import numpy as np", "def helper(x):\n    return K * x",
+        "def f(x):\n    return helper(math.sqrt(x)) + np.pi", "K = 4"]
+
+
+def test_slice_follows_changes_in_place_and_global_setters():
+    code = ("TABLE = {}\nTABLE['a'] = 1\nfor k in range(3):\n    TABLE[k] = k * k\n"
+            "ROWS = []\nROWS.append(5)\n"
+            "def setup():\n    global SCALE\n    SCALE = 3\nsetup()\n"
+            "def f(x):\n    return TABLE[x] * SCALE + ROWS[0]\n")
+    kept = _slice(code, {"f"})
+    assert "TABLE['a'] = 1" in kept and "ROWS.append(5)" in kept and "setup()" in kept
+    assert any(s.startswith("for k in range(3)") for s in kept)
+
+
+def test_calling_a_module_function_does_not_pull_in_the_statement():
+    """``np.max(...)`` in a plotting loop does not change ``np``: the loop is not needed."""
+    code = ("import numpy as np\nRUNS = simulate_everything()\n"
+            "for run in RUNS:\n    print(np.max(run))\n"
+            "def f(x):\n    return np.sin(x)\n")
+    assert _slice(code, {"f"}) == ["import numpy as np", "def f(x):\n    return np.sin(x)"]
+
+
+def test_an_import_of_many_names_keeps_only_those_needed():
+    code = "from wheelkin.unified import (\n    WheelConstraint,\n    mobility,\n    rolling_row,\n)\n"
+    assert _slice(code, {"mobility"}) == ["from wheelkin.unified import mobility"]
+
+
+def _cells(*sources):
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(s) for s in sources])
+    return nbtools.code_cells(nb)
+
+
+def test_the_check_that_counts_is_the_last_one_that_ran():
+    cells = _cells(
+        "def f(x):\n    return x\ncheck('demo.x', f)",
+        "if False:\n    check('demo.x', g)\ndef never():\n    check('demo.y', g)",
+        "x = 1 / 0\ncheck('demo.z', f)",
+        "%matplotlib inline\ncheck('demo.w', lambda x: x)")
+    ran = nbtools.ran(cells, {0: "all", 1: "all", 2: 1, 3: "all"})
+    counted = nbtools.counted_checks(cells, ran)
+    assert set(counted) == {"demo.x", "demo.w"}  # dead code, a stopped cell: not counted
+    assert counted["demo.x"].expr == "f"
+    assert {c.name for c in nbtools.checks(cells)} == {"demo.x", "demo.z", "demo.w"}
+
+
+def test_a_redefinition_after_the_check_is_not_what_was_checked():
+    cells = _cells("def f(x):\n    return 1\ncheck('demo.x', f)\ndef f(x):\n    return 2")
+    ran = nbtools.ran(cells, {0: "all"})
+    check = nbtools.counted_checks(cells, ran)["demo.x"]
+    assert nbtools.function_slice(check, ran) == ["def f(x):\n    return 1\n"]
+
+
+# ----------------------------------------------------------------------------- library parts
+
+def _build(parts, tmp_path):
+    out = library_parts.build(parts, ROOT / "src", tmp_path / "parts")
+    return {p.relative_to(out).as_posix(): p.read_text(encoding="utf-8")
+            for p in out.rglob("*.py")}
+
+
+def _defined(text: str) -> set[str]:
+    names = set()
+    for node in ast.parse(text).body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            for target in getattr(node, "targets", [getattr(node, "target", None)]):
+                if isinstance(target, ast.Name):
+                    names.add(target.id)
+    return names
+
+
+def test_library_parts_hold_the_declared_function_and_not_the_answer(tmp_path):
+    files = _build(["wheelkin.carlike.linkage_error"], tmp_path)
+    carlike = _defined(files["wheelkin/carlike.py"])
+    assert "linkage_error" in carlike and "optimal_arm_angle" not in carlike
+    assert "ackermann_angles" not in carlike  # another exercise's answer, not needed here
+    code = (f"import sys; sys.path.insert(0, {str(tmp_path / 'parts')!r}); "
+            "sys.path = [p for p in sys.path if not p.endswith('src')]; "
+            "from wheelkin.carlike import linkage_error; "
+            "print(linkage_error(0.5, 2.5, 1.5, 0.15, 0.3))")
+    done = subprocess.run([sys.executable, "-I", "-c", code], capture_output=True, text=True,
+                          cwd=tmp_path, check=True)
+    from wheelkin.carlike import linkage_error
+
+    assert float(done.stdout) == pytest.approx(linkage_error(0.5, 2.5, 1.5, 0.15, 0.3))
+
+
+def test_library_parts_never_hold_an_exercise_reference(tmp_path):
+    for name, exercise in all_exercises().items():
+        if not exercise.library:
+            continue
+        files = _build(list(exercise.library), tmp_path / name)
+        module = exercise.reference.__module__
+        path = module.replace(".", "/") + ".py"
+        if path in files:
+            assert exercise.reference.__name__ not in _defined(files[path]), name
+        for part in exercise.library:
+            module, _, attr = part.rpartition(".")
+            text = files.get(module.replace(".", "/") + ".py") or files[
+                module.replace(".", "/") + "/__init__.py"]
+            assert attr in _defined(text) or f"import {attr}" in text, part
+
+
+def test_an_unknown_library_part_is_an_error(tmp_path):
+    with pytest.raises(ValueError, match="no_such_name"):
+        library_parts.build(["wheelkin.carlike.no_such_name"], ROOT / "src", tmp_path)
+    with pytest.raises(ValueError, match="no module"):
+        library_parts.build(["wheelkin.nowhere.x"], ROOT / "src", tmp_path)
+
+
+# ----------------------------------------------------------------------------- data only
+
+def test_cases_cross_as_data_and_come_back_equal():
+    for exercise in all_exercises().values():
+        for case in exercise.cases:
+            sent = json.loads(json.dumps(wire.encode_case(case.args, case.kwargs)))
+            args, kwargs = wire.decode_case(sent)
+            assert repr(args) == repr(case.args) and kwargs == case.kwargs
+
+
+@pytest.mark.parametrize("bad", [
+    {"kind": "value", "shape": [2], "values": [1.0]},            # shape and size disagree
+    {"kind": "value", "shape": [-1], "values": []},
+    {"kind": "value", "shape": [1], "values": ["1"]},            # not a number
+    {"kind": "value", "shape": [1], "values": [True]},
+    {"kind": "pickle", "data": "gASVCAAAAAAAAACMBHRlc3SULg=="},   # no such kind
+    ["value"], "value", None,
+])
+def test_a_malformed_answer_is_refused(bad):
+    assert wire.checked_answer(bad) is None
+
+
+def test_answers_are_numbers_shapes_and_short_texts():
+    assert wire.answer(np.eye(2))["shape"] == [2, 2]
+    assert wire.answer(None) == {"kind": "none"}
+    opaque = wire.answer(object())
+    assert opaque["kind"] == "opaque" and len(opaque["repr"]) <= wire.MAX_TEXT
+    long = wire.checked_answer({"kind": "raised", "ename": "E" * 500, "evalue": "x" * 10**4})
+    assert len(long["ename"]) <= 60 and len(long["evalue"]) <= wire.MAX_TEXT
+    back = wire.checked_answer(json.loads(wire.dumps(wire.answer([math.inf, math.nan]))))
+    assert back["values"][0] == math.inf and math.isnan(back["values"][1])
+
+
+# ----------------------------------------------------------------------------- assignments
+
+GOOD = '''title = "T"
+notebook = "04_units.ipynb"
+[[exercise]]
+name = "conventions.icr"
+points = 2.5
+[[exercise]]
+name = "conventions.rover_radius"
+'''
+
+
+def test_an_assignment_lists_exercises_and_points():
+    assignment = parse(GOOD)
+    assert assignment.exercises == (("conventions.icr", 2.5), ("conventions.rover_radius", 1.0))
+    assert assignment.total == 3.5 and assignment.notebook == "04_units.ipynb"
+    assert assignment.time_limit == 120 and len(assignment.digest) == 16
+
+
+@pytest.mark.parametrize(("text", "words"), [
+    ("title = 1\n", "no [[exercise]]"),
+    ('[[exercise]]\nname = "no.such"\n', "no exercise named 'no.such'"),
+    ('[[exercise]]\nname = "conventions.icr"\npoints = -1\n', "points must be a number > 0"),
+    ('[[exercise]]\nname = "conventions.icr"\n[[exercise]]\nname = "conventions.icr"\n',
+     "named twice"),
+    ('time_limit = 0\n[[exercise]]\nname = "conventions.icr"\n', "time_limit must be"),
+    ('colour = "red"\n[[exercise]]\nname = "conventions.icr"\n', "unknown keys colour"),
+    ('[[exercise]]\nname = "conventions.icr"\nweight = 2\n', "only have the keys"),
+    ("[[exercise]\n", "not valid TOML"),
+])
+def test_a_bad_assignment_is_refused_with_its_reason(text, words):
+    with pytest.raises(AssignmentError, match=words.replace("[", r"\[").replace("(", r"\(")):
+        parse(text)
+
+
+def test_an_assignment_is_made_from_a_notebook():
+    nb = nbformat.read(ROOT / "notebooks/09_carlike/06_sandbox.ipynb", as_version=4)
+    assignment = parse(for_notebook(nb, "Car-like", "06_sandbox.ipynb"))
+    assert "carlike.best_arm_angle" in assignment.names and len(assignment.names) == 5
+
+
+# ----------------------------------------------------------------------------- the folder
+
+def test_every_name_gets_an_id_and_a_folder_of_its_own(tmp_path):
+    import unicodedata
+
+    names = ["alice.ipynb", "alice", "Bob.ipynb", "bob.ipynb", "Ünïcødé 学生.ipynb",
+             unicodedata.normalize("NFC", "é.ipynb"), unicodedata.normalize("NFD", "é.ipynb"),
+             "new\nline.ipynb", ".hidden.ipynb", "..ipynb", ".DS_Store"]
+    items = [grade.Entry(tmp_path / n, n, "file") for n in names]
+    ids = grade.student_ids(items)
+    students = [ids[n][0] for n in names]
+    folders = [ids[n][1] for n in names]
+    assert students[:3] == ["alice.ipynb", "alice", "Bob"] and students[4] == "Ünïcødé 学生"
+    assert len({f.casefold() for f in folders}) == len(names)  # told apart, even Bob/bob
+    assert all("/" not in f and "\n" not in f and f not in (".", "..") for f in folders)
+    assert ids[".hidden.ipynb"] == (".hidden", ".hidden")
+
+
+def test_results_json_caps_the_score_and_hides_hidden_cases_until_the_due_date():
+    assignment = parse(GOOD)
+    result = grade.SubmissionResult("s", "s.ipynb", "s")
+    result.verdicts = [grade.Verdict("conventions.icr", 2.5, 2.5, "✔ all", "✔ visible"),
+                       grade.Verdict("conventions.rover_radius", 1.0, 5.0, "✔", "✔")]
+    data = grade.gradescope(result, assignment)
+    assert data["score"] == 3.5  # never more than the assignment's total
+    assert [t["visibility"] for t in data["tests"]] == ["visible", "after_due_date"] * 2
+    assert [t["max_score"] for t in data["tests"]] == [0.0, 2.5, 0.0, 1.0]
+    assert data["tests"][0]["output"] == "✔ visible" and data["stdout_visibility"] == "hidden"
+
+
+# ----------------------------------------------------------------------------- the sandbox
+
+def test_the_sandbox_command_isolates_and_limits(tmp_path):
+    box = jail.Sandbox(jail.Limits(seconds=9, memory=10**9, output=10), tmp_path,
+                       [(tmp_path, "/opt/job")], slot=3)
+    cmd = box.command(["python", "x.py"])
+    for flag in ("--die-with-parent", "--new-session", "--unshare-pid", "--unshare-net",
+                 "--unshare-ipc", "--clearenv", "--proc", "--dev"):
+        assert flag in cmd, flag
+    assert ["--ro-bind", str(tmp_path), "/opt/job"] == cmd[cmd.index(str(tmp_path)) - 1:
+                                                           cmd.index(str(tmp_path)) + 2]
+    assert "--bind" not in cmd, "nothing of the host is writable inside"
+    assert "--as=1000000000" in cmd and "--cpu=14" in cmd and "--core=0" in cmd
+    tmpfs = [cmd[k + 1] for k, a in enumerate(cmd) if a == "--tmpfs"]
+    assert tmpfs == ["/tmp", jail.HOME]
+    if box.as_root:  # a uid of its own, no capabilities, no new privileges
+        assert f"--reuid={jail.UID_BASE + 3}" in cmd and "--no-new-privs" in cmd
+        assert "--bounding-set=-all" in cmd and "--nproc=64" in cmd
+    else:
+        assert "--unshare-user" in cmd and "--disable-userns" in cmd
+    env = {cmd[k + 1] for k, a in enumerate(cmd) if a == "--setenv"}
+    assert env <= {"PATH", "HOME", "USER", "LOGNAME", "TMPDIR", "LANG", "LC_ALL", "TZ",
+                   "PYTHONHASHSEED", "PYTHONDONTWRITEBYTECODE", "MPLBACKEND", "MPLCONFIGDIR",
+                   "IPYTHONDIR", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                   "PYDEVD_DISABLE_FILE_VALIDATION"}
