@@ -44,7 +44,7 @@ help:
 	@echo "make bench      run every benchmark (python -m benchmarks.run_all)"
 	@echo "make mutation   mutate the formula modules; the unit tests must kill every mutant"
 	@echo "make student    student edition: notebooks without solutions + web edition in _build/student"
-	@echo "make grade SUBMISSIONS=dir   grade submitted notebooks into _build/grades (grades.csv, results.json)"
+	@echo "make grade SUBMISSIONS=dir ASSIGNMENT=file.toml   grade into _build/grades (sandboxed; resumes)"
 	@echo "make pdf        the printed edition, _build/pdf/wheelkin.pdf (make tex installs TeX, as root)"
 	@echo "make clean      remove build output and caches"
 
@@ -164,13 +164,17 @@ student: vendor
 	$(BIN)/python -m tools.student_edition --out _build/student
 
 SUBMISSIONS ?=
-GRADE_TIMEOUT ?= 120
+ASSIGNMENT ?=
+GRADE_JOBS ?= 2
+# Each submission runs in bubblewrap sandboxes (Debian's bubblewrap: .ci/run installs it).
 grade: $(STAMP)
-	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks>"; exit 2; }
-	$(BIN)/python -m tools.grade "$(SUBMISSIONS)" --out _build/grades --timeout $(GRADE_TIMEOUT)
+	@test -n "$(SUBMISSIONS)" -a -n "$(ASSIGNMENT)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks> ASSIGNMENT=<assignments/....toml>"; exit 2; }
+	$(BIN)/python -m tools.grade "$(SUBMISSIONS)" --assignment "$(ASSIGNMENT)" --out _build/grades -j $(GRADE_JOBS)
 
-# The kit layer: the grader on tests/kit/submissions, the student edition built and executed,
-# stray globals before every exercise stub (tests/kit/conftest.py collects it only here).
+# The kit layer: the grader (in its bubblewrap sandboxes) on tests/kit/submissions and the
+# red team's tests/kit/redteam, the book's solutions through the grader, the student edition
+# built and executed, stray globals before every exercise stub (tests/kit/conftest.py collects
+# it only here).
 kit: vendor
 	$(PYTEST) tests/kit -o addopts="-ra" --timeout 3600
 
