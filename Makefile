@@ -31,7 +31,7 @@ NB_ENV := PYTHONHASHSEED=0 MPLBACKEND=module://matplotlib_inline.backend_inline 
 LAYERS := lint library sandbox panels book-tests nbval book browser kit pdf
 
 .PHONY: help setup book vendor test unit $(LAYERS) notebooks serve serve-live bench clean mutation lab student \
-  grade tex
+  grade autograder tex
 
 help:
 	@echo "make book       build the HTML book into _build/html (set-up included)"
@@ -45,6 +45,7 @@ help:
 	@echo "make mutation   mutate the formula modules; the unit tests must kill every mutant"
 	@echo "make student    student edition: notebooks without solutions + web edition in _build/student"
 	@echo "make grade SUBMISSIONS=dir ASSIGNMENT=file.toml   grade into _build/grades (sandboxed; resumes)"
+	@echo "make autograder ASSIGNMENT=file.toml   Gradescope's autograder zip in _build/autograder"
 	@echo "make pdf        the printed edition, _build/pdf/wheelkin.pdf (make tex installs TeX, as root)"
 	@echo "make clean      remove build output and caches"
 
@@ -171,10 +172,16 @@ grade: $(STAMP)
 	@test -n "$(SUBMISSIONS)" -a -n "$(ASSIGNMENT)" || { echo "usage: make grade SUBMISSIONS=<folder of notebooks> ASSIGNMENT=<assignments/....toml>"; exit 2; }
 	$(BIN)/python -m tools.grade "$(SUBMISSIONS)" --assignment "$(ASSIGNMENT)" --out _build/grades -j $(GRADE_JOBS)
 
+# Gradescope's autograder for one assignment: _build/autograder/<assignment>.zip.
+autograder: $(STAMP)
+	@test -n "$(ASSIGNMENT)" || { echo "usage: make autograder ASSIGNMENT=<assignments/....toml>"; exit 2; }
+	$(BIN)/python -m tools.autograder "$(ASSIGNMENT)" --out _build/autograder
+
 # The kit layer: the grader (in its bubblewrap sandboxes) on tests/kit/submissions and the
-# red team's tests/kit/redteam, the book's solutions through the grader, the student edition
-# built and executed, stray globals before every exercise stub (tests/kit/conftest.py collects
-# it only here).
+# red team's tests/kit/redteam, the book's solutions through the grader, Gradescope's zip run
+# as Gradescope runs it, the course's CI files (actionlint), the student edition built and
+# executed, stray globals before every exercise stub (tests/kit/conftest.py collects it only
+# here).
 kit: vendor
 	$(PYTEST) tests/kit -o addopts="-ra" --timeout 3600
 
