@@ -34,11 +34,6 @@ def _tags(cell) -> set[str]:
     return set(cell.get("metadata", {}).get("tags", []))
 
 
-def _checked(cell) -> list[str]:
-    return [c.name for c in nbtools.checks(nbtools.code_cells(
-        nbformat.v4.new_notebook(cells=[cell])))]
-
-
 NOTEBOOKS = [rel for rel in toc_notebooks()
              if any("solution" in _tags(c) for c in nbformat.read(ROOT / rel, 4).cells)]
 
@@ -46,20 +41,12 @@ NOTEBOOKS = [rel for rel in toc_notebooks()
 def exercises_of(rel: Path) -> list[str]:
     nb = nbformat.read(ROOT / rel, as_version=4)
     return list(dict.fromkeys(n for c in nb.cells if "exercise" in _tags(c)
-                              for n in _checked(c)))
+                              for n in nbtools.checked_names(c)))
 
 
 def solved(nb) -> nbformat.NotebookNode:
-    """The student edition of ``nb`` with each exercise stub replaced by the book's solution
-    of the same exercise."""
-    solutions = {name: cell.source for cell in nb.cells if "solution" in _tags(cell)
-                 for name in _checked(cell)}
-    student, _ = student_notebook(nb)
-    for cell in student.cells:
-        names = _checked(cell) if "exercise" in _tags(cell) else []
-        if names and names[0] in solutions:
-            cell.source = solutions[names[0]]
-    return student
+    """The student edition of ``nb`` with the book's solutions in place of the stubs."""
+    return nbtools.with_solutions(student_notebook(nb)[0], nb)
 
 
 def _stem(rel: Path) -> str:

@@ -113,3 +113,30 @@ def function_slice(check: Check, ran_statements: list[Statement]) -> list[str]:
             break
         before.append(statement)
     return [source for _, source in needed_statements(before, expression_names(check.expr))]
+
+
+def _tags(cell) -> set[str]:
+    return set(cell.get("metadata", {}).get("tags", []))
+
+
+def checked_names(cell) -> list[str]:
+    """The exercises a single cell checks (``check("name", f)`` at its top level)."""
+    import nbformat
+
+    return [c.name for c in checks(code_cells(nbformat.v4.new_notebook(cells=[cell])))]
+
+
+def with_solutions(student, book) -> object:
+    """``student`` (a student edition of the notebook ``book``) with each exercise stub
+    (tagged ``exercise``) replaced by ``book``'s solution (tagged ``solution``) of the same
+    exercise: the notebook a student who solved everything hands in."""
+    import copy
+
+    solutions = {name: cell.source for cell in book.cells if "solution" in _tags(cell)
+                 for name in checked_names(cell)}
+    out = copy.deepcopy(student)
+    for cell in out.cells:
+        names = checked_names(cell) if "exercise" in _tags(cell) else []
+        if names and names[0] in solutions:
+            cell.source = solutions[names[0]]
+    return out
