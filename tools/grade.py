@@ -156,7 +156,7 @@ class Run:
     visible: dict[str, int]
     library: dict[str, str | None]    # exercise -> folder holding its parts (or None)
     work: str
-    uid_base: int = jail.UID_BASE
+    uid_base: int
     secret_id: str = ""
 
 
@@ -179,7 +179,7 @@ def draw_cases(assignment: Assignment, secret: bytes) -> tuple[dict, dict]:
     return cases, visible
 
 
-def prepare(assignment: Assignment, secret: bytes, work: Path) -> Run:
+def prepare(assignment: Assignment, secret: bytes, work: Path, uid_base: int) -> Run:
     """The run's work folder (library parts, fonts, passwd files) and cases; checks that the
     sandbox works and that the grading sandbox cannot import the library."""
     from wheelkin.exercises import get
@@ -206,9 +206,9 @@ def prepare(assignment: Assignment, secret: bytes, work: Path) -> Run:
         pass
     _readable(work)
     cases, visible = draw_cases(assignment, secret)
-    run = Run(assignment, cases, visible, library, str(work),
+    run = Run(assignment, cases, visible, library, str(work), uid_base,
               secret_id=hashlib.sha256(secret).hexdigest()[:12])
-    jail.probe(work)
+    jail.probe(work, uid_base)
     _check_library_is_hidden(run)
     return run
 
@@ -702,8 +702,11 @@ def grade_folder(folder: Path, assignment: Assignment, out: Path, jobs: int = 2,
         return [results[e.name] for e in items]
     work = Path(tempfile.mkdtemp(prefix="wheelkin-grade-"))
     (work / "jobs").mkdir()
+    uid_base, lock = jail.claim_uids()
     try:
-        run = prepare(assignment, secret, work)
+        run = prepare(assignment, secret, work, uid_base)
+        if lock is not None:
+            log(f"grade: sandbox uids {uid_base}..{uid_base + jail.BLOCK - 1}")
         (work / "jobs").chmod(0o755)
         context = multiprocessing.get_context("fork")
         slots = context.Queue()
@@ -724,6 +727,8 @@ def grade_folder(folder: Path, assignment: Assignment, out: Path, jobs: int = 2,
                 log(_line(result, assignment))
     finally:
         shutil.rmtree(work, ignore_errors=True)
+        if lock is not None:
+            os.close(lock)
     return [results[e.name] for e in items]
 
 
@@ -776,8 +781,9 @@ def gradescope_run(root: Path, assignment: Assignment) -> int:
     else:
         work = Path(tempfile.mkdtemp(prefix="wheelkin-grade-"))
         (work / "jobs").mkdir()
+        uid_base, lock = jail.claim_uids()
         try:
-            run = prepare(assignment, secret, work)
+            run = prepare(assignment, secret, work, uid_base)
             (work / "jobs").chmod(0o755)
             judges = Judges(SRC)
             try:
@@ -786,6 +792,8 @@ def gradescope_run(root: Path, assignment: Assignment) -> int:
                 judges.close()
         finally:
             shutil.rmtree(work, ignore_errors=True)
+            if lock is not None:
+                os.close(lock)
     _atomic_write(results_dir / "results.json",
                   json.dumps(gradescope(result, assignment, secret_id), indent=1,
                              ensure_ascii=False) + "\n")

@@ -9,6 +9,7 @@ from __future__ import annotations
 import csv
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -43,6 +44,13 @@ def grade(folder: Path, out: Path, *extra: str, timeout: float = 900):
     print(done.stdout)  # seconds per submission, in the log
     assert done.returncode == 0, done.stdout + done.stderr
     return (*read(out), done.stdout)
+
+
+def sandbox_uids(log: str) -> list[int]:
+    """The uids of a run's two workers' sandboxes, from its log (as root)."""
+    found = re.search(r"sandbox uids (\d+)\.\.", log)
+    assert found, log
+    return [int(found.group(1)) + slot for slot in range(2)]
 
 
 def read(out: Path):
@@ -137,9 +145,12 @@ def test_a_killed_grader_resumes_where_it_stopped(tmp_path):
     for name in ("correct", "wrong", "raises", "calls_library", "loops_forever"):
         (folder / f"{name}.ipynb").write_bytes((SUBMISSIONS / f"{name}.ipynb").read_bytes())
     out = tmp_path / "out"
-    proc = subprocess.Popen([sys.executable, str(ROOT / "tools" / "grade.py"), str(folder),
-                             "--assignment", str(ASSIGNMENT), "--out", str(out), "-j", "2"],
-                            cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    log = tmp_path / "first.log"
+    with log.open("w") as stream:
+        proc = subprocess.Popen([sys.executable, str(ROOT / "tools" / "grade.py"),
+                                 str(folder), "--assignment", str(ASSIGNMENT), "--out",
+                                 str(out), "-j", "2"], cwd=ROOT, stdout=stream,
+                                stderr=subprocess.STDOUT)
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline and len(list(out.glob("results/*/results.json"))) < 2:
         time.sleep(0.2)
@@ -149,8 +160,8 @@ def test_a_killed_grader_resumes_where_it_stopped(tmp_path):
     assert 2 <= len(first) < 5, sorted(first)
     time.sleep(1.0)
     if os.geteuid() == 0:  # nothing of the killed run is left running
-        for slot in range(2):
-            assert jail.processes_of(jail.UID_BASE + slot) == []
+        for uid in sandbox_uids(log.read_text()):
+            assert jail.processes_of(uid) == []
     rows, _results, log = grade(folder, out)
     assert f"{len(first)} results kept from an earlier run" in log
     assert set(rows) == {"correct", "wrong", "raises", "calls_library", "loops_forever"}

@@ -8,6 +8,8 @@ from __future__ import annotations
 import ast
 import json
 import math
+import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -256,6 +258,21 @@ def test_results_json_caps_the_score_and_hides_hidden_cases_until_the_due_date()
 
 # ----------------------------------------------------------------------------- the sandbox
 
+def test_two_runs_never_share_a_uid():
+    """Each grading run locks a block of uids: a second run gets another block (a run's
+    clean-up kills every process of its uids, so sharing one would kill a neighbour's)."""
+    first, lock1 = jail.claim_uids()
+    second, lock2 = jail.claim_uids()
+    try:
+        if lock1 is None:
+            pytest.skip("an ordinary user's sandboxes run as that user")
+        assert first != second and abs(first - second) >= jail.BLOCK
+    finally:
+        for lock in (lock1, lock2):
+            if lock is not None:
+                os.close(lock)
+
+
 def test_the_sandbox_command_isolates_and_limits(tmp_path):
     box = jail.Sandbox(jail.Limits(seconds=9, memory=10**9, output=10), tmp_path,
                        [(tmp_path, "/opt/job")], slot=3)
@@ -279,3 +296,60 @@ def test_the_sandbox_command_isolates_and_limits(tmp_path):
                    "PYTHONHASHSEED", "PYTHONDONTWRITEBYTECODE", "MPLBACKEND", "MPLCONFIGDIR",
                    "IPYTHONDIR", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
                    "PYDEVD_DISABLE_FILE_VALIDATION"}
+
+
+def test_a_bind_under_tmp_is_seen_inside_the_private_tmp(tmp_path):
+    """A fresh clone in ``mktemp -d`` has its venv under /tmp: the sandbox's own /tmp holds it
+    read-only, and stays writable."""
+    shown = tmp_path / "venv-like"
+    shown.mkdir()
+    (shown / "marker").write_text("here\n", encoding="utf-8")
+    uid_base, lock = jail.claim_uids()  # a block of uids no other run uses
+    try:
+        etc = jail.write_etc(tmp_path / "etc", uid_base)
+        box = jail.Sandbox(jail.Limits(seconds=30), etc, [(shown, str(shown))],
+                           uid_base=uid_base)
+        done = box.run(["/bin/sh", "-c", f"cat {shown}/marker; touch /tmp/x && echo tmp-ok; "
+                        f"touch {shown}/y 2>/dev/null || echo read-only; ls /tmp | wc -l"])
+    finally:
+        if lock is not None:
+            os.close(lock)
+    assert done.returncode == 0, done.tail
+    assert done.tail.split() == ["here", "tmp-ok", "read-only", "2"], done.tail
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="needs root to start it as an ordinary user")
+def test_an_ordinary_user_gets_the_sandbox_from_a_user_namespace(tmp_path):
+    """The grader run by an ordinary user: bwrap's user namespace, the same isolation."""
+
+    class AsUser(jail.Sandbox):
+        as_root = False
+
+    import tempfile
+
+    etc = Path(tempfile.mkdtemp(prefix="grade-etc-"))  # not pytest's: that one is 0700
+    try:
+        etc.chmod(0o755)
+        jail.write_etc(etc, 65534)
+        box = AsUser(jail.Limits(seconds=30), etc, python=False)
+        done = _as_nobody(box)
+    finally:
+        shutil.rmtree(etc)
+    if "No permissions to create new namespace" in done.stderr or (
+            "Operation not permitted" in done.stderr):
+        pytest.skip(f"unprivileged user namespaces are off here: {done.stderr.strip()}")
+    lines = done.stdout.split("\n")
+    assert done.returncode == 0, done.stderr
+    assert lines[0] == "65534" and "No such file" in lines[1]  # no /work, no /root
+    # nobody inside; outside, the user who started it (an unprivileged user can map no
+    # other uid: the kernel's rule)
+    assert lines[2].split()[0] == "65534"
+    assert int(lines[3]) <= 4  # its own processes only: bwrap's init, sh, ls, grep
+
+
+def _as_nobody(box):
+    cmd = box.command(["/bin/sh", "-c", "id -u; ls /work /root 2>&1 | head -1; "
+                       "cat /proc/self/uid_map; ls /proc | grep -c '^[0-9]'"])
+    assert "setpriv" not in cmd and "--unshare-user" in cmd
+    return subprocess.run(["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups",
+                           *cmd], capture_output=True, text=True, check=False, timeout=60)

@@ -40,7 +40,7 @@ ROOT = HERE.parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 sys.path.insert(0, str(HERE))
 from grading import jail  # noqa: E402
-from test_grade import EXERCISES, grade  # noqa: E402
+from test_grade import EXERCISES, grade, sandbox_uids  # noqa: E402
 
 CORRECT = [1, 2, 1, 1]
 #: Expected points (rover_radius, icr, encoder_steps, ramp) and words of the verdicts.
@@ -88,7 +88,8 @@ def _sandbox_files(top: Path) -> list[Path]:
         for name in dirnames + filenames:
             path = Path(dirpath) / name
             try:
-                if path.lstat().st_uid >= jail.UID_BASE:
+                if jail.UID_BASE <= path.lstat().st_uid < jail.UID_BASE + (
+                        jail.BLOCK * jail.UID_BLOCKS):
                     found.append(path)
             except OSError:
                 continue
@@ -184,8 +185,8 @@ def test_nothing_outlives_the_run_and_nothing_outside_changed(attacked):
     folder, _out, _, _, _, before = attacked
     assert _daemons() == [], "a process left behind by a submission is still running"
     if os.geteuid() == 0:
-        for slot in range(2):
-            assert jail.processes_of(jail.UID_BASE + slot) == []
+        for uid in sandbox_uids(attacked[4]):
+            assert jail.processes_of(uid) == []
         for top in (folder.parent, Path("/tmp"), ROOT / ".venv", ROOT / "src",
                     ROOT / "tools"):
             assert _sandbox_files(top) == [], top

@@ -17,11 +17,13 @@ Each run gets, from ``bwrap``:
   the run, whatever it forked or daemonised.
 
 Inside, the command runs as an unprivileged user: as root, ``setpriv`` switches to a uid of
-its own (``uid_base + slot``: one per concurrent worker, no capabilities, ``no_new_privs``)
-after bwrap has made the mounts, so the sandbox's processes are not root in any namespace;
-as an ordinary user, bwrap's user namespace maps the sandbox's ``nobody`` to the grader's
-own uid. ``prlimit`` caps memory (address space), CPU seconds, the size of any file written,
-open files, core dumps, and (as root, where the uid is the sandbox's own) processes.
+its own (``uid_base + slot``: one per concurrent worker, no capabilities, ``no_new_privs``;
+each grading run claims a block of uids of its own with :func:`claim_uids`, so that two runs
+on one machine never share one) after bwrap has made the mounts, so the sandbox's processes
+are not root in any namespace; as an ordinary user, bwrap's user namespace maps the
+sandbox's ``nobody`` to the grader's own uid. ``prlimit`` caps memory (address space), CPU
+seconds, the size of any file written, open files, core dumps, and (as root, where the uid
+is the sandbox's own) processes.
 
 Root never writes into a directory the sandbox can write: the sandbox's writable places are
 its own tmpfs, and the inputs are written by the grader into a folder that the sandbox sees
@@ -30,19 +32,26 @@ read-only.
 
 from __future__ import annotations
 
+import fcntl
 import os
 import pwd
+import random
 import selectors
 import shutil
 import signal
+import stat
 import subprocess
 import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-#: First uid of the sandboxes' users when the grader runs as root (``uid_base + slot``).
+#: First uid of the sandboxes' users when the grader runs as root: a run claims one of
+#: ``UID_BLOCKS`` blocks of ``BLOCK`` uids from here (``uid_base + slot``).
 UID_BASE = 1_900_000_000
+BLOCK, UID_BLOCKS = 64, 4096
+#: Where runs (as root) lock the uid block they use: root's own, never a shared /tmp.
+UID_LOCKS = Path("/run/wheelkin-grade")
 #: The home directory inside the sandbox.
 HOME = "/home/student"
 #: Where the grader's sandbox scripts, the job and the library parts are mounted.
@@ -89,8 +98,9 @@ def bwrap_path() -> str:
     return found
 
 
-def _system_binds() -> list[str]:
-    """Read-only binds of the system: /usr, its links (/bin, /lib ...), this Python."""
+def _system_binds(python: bool = True) -> list[str]:
+    """Read-only binds of the system: /usr, its links (/bin, /lib ...), this Python (unless
+    ``python`` is false)."""
     args = ["--ro-bind", "/usr", "/usr"]
     for top in ("bin", "sbin", "lib", "lib32", "lib64", "libx32"):
         path = Path("/") / top
@@ -102,6 +112,8 @@ def _system_binds() -> list[str]:
                  "/etc/alternatives", "/etc/localtime"):
         if os.path.exists(path):
             args += ["--ro-bind", path, path]
+    if not python:
+        return args
     prefixes = {Path(sys.base_prefix).resolve(), Path(sys.prefix).resolve()}
     # The interpreter's own directory when it is elsewhere (e.g. pyenv's under /root).
     prefixes.add(Path(os.path.realpath(sys.executable)).parent.parent)
@@ -121,7 +133,7 @@ def python_in_sandbox() -> str:
 def _with_parents(binds: list[str]) -> list[str]:
     """``binds`` preceded by ``--dir`` for every folder above a mount point, mode 0755 (bwrap
     would make them 0700, which the sandbox's user could not cross)."""
-    made: set[str] = {"/"}
+    made: set[str] = {"/", "/tmp", "/home", HOME, "/proc", "/dev"}  # there already
     out: list[str] = []
     i = 0
     while i < len(binds):
@@ -143,7 +155,8 @@ class Sandbox:
     """One kind of sandbox: its binds and limits. :meth:`run` starts a fresh one each time.
 
     ``binds``: (host path, path inside) pairs, read-only; ``slot``: which worker (its uid,
-    as root); ``etc``: a folder with ``passwd`` and ``group`` for the sandbox's user.
+    as root); ``etc``: a folder with ``passwd`` and ``group`` for the sandbox's user;
+    ``python``: bind this Python and its virtual environment (at their own paths).
     """
 
     limits: Limits
@@ -152,6 +165,7 @@ class Sandbox:
     slot: int = 0
     uid_base: int = UID_BASE
     env: dict[str, str] = field(default_factory=dict)
+    python: bool = True
 
     @property
     def as_root(self) -> bool:
@@ -168,15 +182,18 @@ class Sandbox:
                "--hostname", "sandbox"]
         if not self.as_root:  # an ordinary user: bwrap's user namespace
             cmd += ["--unshare-user", "--uid", "65534", "--gid", "65534", "--disable-userns"]
-        binds = [*_system_binds(), "--ro-bind", str(self.etc / "passwd"), "/etc/passwd",
+        # The private tmpfs first, then the read-only binds: a venv or a Python that lives
+        # under /tmp (a fresh clone in `mktemp -d`) is bound inside the sandbox's own /tmp.
+        cmd += ["--proc", "/proc", "--dev", "/dev",
+                "--perms", "1777", "--size", str(limits.tmp_size), "--tmpfs", "/tmp",
+                "--perms", "1777", "--size", str(limits.tmp_size), "--tmpfs", HOME]
+        binds = [*_system_binds(self.python), "--ro-bind", str(self.etc / "passwd"),
+                 "/etc/passwd",
                  "--ro-bind", str(self.etc / "group"), "/etc/group"]
         for host, inside in self.binds:
             binds += ["--ro-bind", str(host), inside]
         cmd += _with_parents(binds)
-        cmd += ["--proc", "/proc", "--dev", "/dev",
-                "--perms", "1777", "--size", str(limits.tmp_size), "--tmpfs", "/tmp",
-                "--perms", "1777", "--size", str(limits.tmp_size), "--tmpfs", HOME,
-                "--chdir", HOME, "--clearenv"]
+        cmd += ["--chdir", HOME, "--clearenv"]
         env = {"PATH": "/usr/bin:/bin", "HOME": HOME, "USER": "student", "LOGNAME": "student",
                "TMPDIR": "/tmp", "LANG": "C.UTF-8", "LC_ALL": "C.UTF-8", "TZ": "UTC",
                "PYTHONHASHSEED": "0", "PYTHONDONTWRITEBYTECODE": "1", "MPLBACKEND": "Agg",
@@ -277,6 +294,31 @@ def _kill(proc: subprocess.Popen) -> None:
         pass
 
 
+def claim_uids() -> tuple[int, int | None]:
+    """A block of uids no other grading run on this machine uses: ``(uid_base, lock)``. The
+    lock (an open file, ``flock``-ed) is held until it is closed or the process ends. As an
+    ordinary user (whose sandboxes run as that user): ``(UID_BASE, None)``."""
+    if os.geteuid() != 0:
+        return UID_BASE, None
+    UID_LOCKS.mkdir(mode=0o700, exist_ok=True)
+    info = os.lstat(UID_LOCKS)
+    if not stat.S_ISDIR(info.st_mode) or info.st_uid != 0 or info.st_mode & 0o022:
+        raise SandboxUnavailable(f"{UID_LOCKS} must be a folder of root's that only root may "
+                                 "write")
+    start = random.randrange(UID_BLOCKS)
+    for k in range(UID_BLOCKS):
+        block = (start + k) % UID_BLOCKS
+        fd = os.open(UID_LOCKS / f"{block}.lock",
+                     os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_CLOEXEC, 0o600)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(fd)
+            continue
+        return UID_BASE + BLOCK * block, fd
+    raise SandboxUnavailable(f"all {UID_BLOCKS} blocks of sandbox uids are in use")
+
+
 def processes_of(uid: int) -> list[int]:
     """The pids of every process whose real uid is ``uid``."""
     found = []
@@ -319,12 +361,12 @@ def write_etc(folder: Path, uid: int) -> Path:
     return folder
 
 
-def probe(work: Path) -> None:
+def probe(work: Path, uid_base: int = UID_BASE) -> None:
     """Start one sandbox that runs ``true``; raise :class:`SandboxUnavailable` with bwrap's
     reason if it cannot (no bubblewrap, namespaces refused: a container without the rights,
     unprivileged user namespaces turned off)."""
-    etc = write_etc(work / "etc-probe", UID_BASE if os.geteuid() == 0 else 65534)
-    box = Sandbox(Limits(seconds=30), etc)
+    etc = write_etc(work / "etc-probe", uid_base if os.geteuid() == 0 else 65534)
+    box = Sandbox(Limits(seconds=30), etc, uid_base=uid_base)
     done = box.run(["true"])
     if done.returncode != 0:
         raise SandboxUnavailable("bubblewrap cannot make its sandbox here: "
