@@ -95,7 +95,7 @@ def grade_once(folder: Path, assignment: Path, out: Path, sandboxed: bool) -> di
     saved = (jail.Sandbox, jail.probe, grade._check_library_is_hidden)
     if not sandboxed:
         jail.Sandbox = unsandboxed()
-        jail.probe = lambda work: None
+        jail.probe = lambda work, uid_base=0: None
         grade._check_library_is_hidden = lambda run: None
     try:
         start = time.perf_counter()
@@ -110,29 +110,33 @@ def grade_once(folder: Path, assignment: Path, out: Path, sandboxed: bool) -> di
             "scores": sorted(scores), "n": len(results)}
 
 
-def start_cost(repeats: int = 15) -> tuple[float, float]:
-    """Median seconds to start Python and import numpy: in a sandbox, and plainly."""
+def start_cost(repeats: int = 15, trivial: int = 50) -> dict[str, float]:
+    """Median seconds to start a sandbox: around ``/bin/true`` (the sandbox alone) and around
+    Python importing numpy, each against the same command run plainly (interleaved)."""
     from grading import jail
 
     work = Path(tempfile.mkdtemp(prefix="bench-start-"))
     uid_base, lock = jail.claim_uids()
+    times: dict[str, list[float]] = {"true": [], "true_plain": [], "python": [],
+                                      "python_plain": []}
     try:
         box = jail.Sandbox(jail.Limits(seconds=60), jail.write_etc(work / "etc", uid_base),
                            uid_base=uid_base)
-        argv = [jail.python_in_sandbox(), "-I", "-c", "import numpy"]
-        boxed, plain = [], []
-        for _ in range(repeats):
-            t = time.perf_counter()
-            assert box.run(argv).returncode == 0
-            boxed.append(time.perf_counter() - t)
-            t = time.perf_counter()
-            subprocess.run(argv, check=True)
-            plain.append(time.perf_counter() - t)
+        for key, argv, count in (("true", ["/bin/true"], trivial),
+                                 ("python", [jail.python_in_sandbox(), "-I", "-c",
+                                             "import numpy"], repeats)):
+            for _ in range(count):
+                t = time.perf_counter()
+                assert box.run(argv).returncode == 0
+                times[key].append(time.perf_counter() - t)
+                t = time.perf_counter()
+                subprocess.run(argv, check=True)
+                times[key + "_plain"].append(time.perf_counter() - t)
     finally:
         shutil.rmtree(work, ignore_errors=True)
         if lock is not None:
             os.close(lock)
-    return statistics.median(boxed), statistics.median(plain)
+    return {key: statistics.median(values) for key, values in times.items()}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -147,26 +151,26 @@ def main(argv: list[str] | None = None) -> int:
         direct = grade_once(folder, assignment, work / "out-direct", sandboxed=False)
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    boxed_start, plain_start = start_cost()
+    start = start_cost()
     load = os.getloadavg()[0]
-    print(json.dumps({"sandboxed": boxed, "unsandboxed": direct,
-                      "start": [boxed_start, plain_start]}, indent=1))
+    print(json.dumps({"sandboxed": boxed, "unsandboxed": direct, "start": start}, indent=1))
     assert boxed["scores"] == direct["scores"] == [5.0], "every copy must get every point"
     per = boxed["wall"] / boxed["n"]
     sandboxes = 1 + 5  # the notebook, and one per exercise
-    cost = (boxed_start - plain_start) * sandboxes
+    setup = start["true"] - start["true_plain"]
+    difference = boxed["median"] - direct["median"]
     begin, end = markers("grading")
     section = "\n".join([
         begin,
         "## Grading (`make grade`)",
         "",
         f"Machine: {cpu()}; load average {load:.1f} at the end of the run (the machine is "
-        f"shared). `benchmarks/grading.py`: {boxed['n']} copies of one submission, "
-        f"the student edition of `{NOTEBOOK}` solved with the book's solutions (5 exercises, "
-        "the notebook's figures and animations included), graded by `tools/grade.py` with "
-        "its default 2 workers: per submission, one sandbox runs the notebook and one per "
-        "exercise calls the student's function on its visible and hidden cases; the judge "
-        "runs outside.",
+        f"shared with other jobs). `benchmarks/grading.py`: {boxed['n']} copies of one "
+        f"submission, the student edition of `{NOTEBOOK}` solved with the book's solutions "
+        "(5 exercises, the notebook's figures and animations included), graded by "
+        "`tools/grade.py` with its default 2 workers: per submission, one sandbox runs the "
+        "notebook and one per exercise calls the student's function on its visible and "
+        "hidden cases; the judge runs outside.",
         "",
         "| | per submission, median | p95 | wall time for the folder |",
         "| --- | --- | --- | --- |",
@@ -177,13 +181,14 @@ def main(argv: list[str] | None = None) -> int:
         "",
         f"- A class of {CLASS} with the default 2 workers: about {CLASS * per / 60:.0f} min "
         f"({per:.1f} s of wall time per submission).",
-        f"- The sandbox's own cost: starting Python with numpy takes "
-        f"{boxed_start * 1000:.0f} ms in a sandbox against {plain_start * 1000:.0f} ms "
-        f"plainly (medians of 15, interleaved), {1000 * (boxed_start - plain_start):.0f} ms "
-        f"per sandbox, {sandboxes} sandboxes per submission: {cost:.2f} s, "
-        f"{100 * cost / direct['median']:.0f} % of the unsandboxed median. The end-to-end "
-        f"difference of the two runs, {boxed['median'] - direct['median']:+.1f} s, is within "
-        "what other jobs on the machine add or take away.",
+        f"- The sandbox's overhead: {difference:+.1f} s per submission end to end "
+        f"({100 * difference / direct['median']:+.0f} % of the unsandboxed median; one run "
+        "each, on a shared machine). Making a sandbox costs "
+        f"{1000 * setup:.0f} ms (`/bin/true` in bwrap, {1000 * start['true']:.0f} ms, "
+        f"against plainly, {1000 * start['true_plain']:.0f} ms; medians of 50), "
+        f"{sandboxes} sandboxes per submission: {sandboxes * setup:.2f} s; starting Python "
+        f"with numpy takes {1000 * start['python']:.0f} ms in a sandbox and "
+        f"{1000 * start['python_plain']:.0f} ms plainly (medians of 15).",
         end,
     ])
     if args.no_write:
