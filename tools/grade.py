@@ -73,7 +73,13 @@ import nbformat  # noqa: E402
 import numpy as np  # noqa: E402
 from grading import jail, library_parts, wire  # noqa: E402
 from grading import notebook as nbtools  # noqa: E402
-from grading.assignment import Assignment, AssignmentError, for_notebook, load  # noqa: E402
+from grading.assignment import (  # noqa: E402
+    Assignment,
+    AssignmentError,
+    book_title,
+    for_notebook,
+    load,
+)
 from grading.judge import Judges  # noqa: E402
 
 GRADING = TOOLS / "grading"
@@ -816,11 +822,17 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--gradescope", type=Path, metavar="ROOT",
                         help="grade ROOT/submission into ROOT/results (Gradescope)")
     parser.add_argument("--assignment-for", type=Path, metavar="NOTEBOOK",
-                        help="print an assignment of every exercise this notebook checks")
+                        help="print an assignment of every exercise this notebook checks "
+                             "(for assignments/<chapter>-<section>.toml)")
     args = parser.parse_args(argv)
     if args.assignment_for:
-        nb = nbformat.read(args.assignment_for, as_version=4)
-        sys.stdout.write(for_notebook(nb, args.assignment_for.stem, args.assignment_for.name))
+        path = args.assignment_for
+        nb = nbformat.read(path, as_version=4)
+        try:
+            shown = path.resolve().relative_to(ROOT).as_posix()
+        except ValueError:
+            shown = path.as_posix()
+        sys.stdout.write(for_notebook(nb, book_title(nb, path), path.name, shown))
         return 0
     if args.assignment is None:
         parser.error("--assignment FILE.toml is required (which exercises, their points)")

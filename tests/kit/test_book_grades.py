@@ -106,8 +106,9 @@ def test_the_shipped_assignments_match_the_notebooks():
     shipped = {path.stem: load(path) for path in sorted((ROOT / "assignments").glob("*.toml"))}
     for rel in NOTEBOOKS:
         stem = f"{rel.parent.name}-{rel.stem}"
-        assert stem in shipped, (f"no assignments/{stem}.toml: write it with "
-                                 f"tools/grade.py --assignment-for {rel.as_posix()}")
+        assert stem in shipped, (f"no assignments/{stem}.toml: write it with .venv/bin/python "
+                                 f"tools/grade.py --assignment-for {rel.as_posix()} > "
+                                 f"assignments/{stem}.toml")
         assignment = shipped.pop(stem)
         assert assignment.notebook == rel.name
         assert assignment.names == exercises_of(rel), stem

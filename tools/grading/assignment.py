@@ -122,17 +122,38 @@ def load(path: Path) -> Assignment:
     return parse(text, Path(path))
 
 
-def for_notebook(nb, title: str, notebook: str | None = None) -> str:
-    """An assignment (TOML text) of every exercise a notebook checks, one point each."""
+def for_notebook(nb, title: str, notebook: str | None = None, source: str = "",
+                 time_limit: float = 300) -> str:
+    """An assignment (TOML text) of every exercise a notebook checks, one point each:
+    ``source`` (the notebook's path in the book) for the header comment."""
     from grading.notebook import checks, code_cells
 
     names = list(dict.fromkeys(c.name for c in checks(code_cells(nb))))
-    lines = [f"title = {_toml_string(title)}"]
+    lines = []
+    if source:
+        lines += [f"# The exercises of {source}, one point each: edit the points, drop",
+                  "# exercises, or add others (make grade ASSIGNMENT=..., make autograder "
+                  "ASSIGNMENT=...)."]
+    lines.append(f"title = {_toml_string(title)}")
     if notebook:
         lines.append(f"notebook = {_toml_string(notebook)}")
+    lines.append(f"time_limit = {time_limit:g}    # seconds the whole notebook may run (its "
+                 "figures and animations included)")
     for name in names:
         lines += ["", "[[exercise]]", f"name = {_toml_string(name)}", "points = 1"]
     return "\n".join(lines) + "\n"
+
+
+def book_title(nb, path) -> str:
+    """``"9. The car in the sandbox, and exercises"``: the chapter's number (from its
+    folder, ``09_carlike``) and the notebook's first heading."""
+    import re
+
+    heading = next((m.group(1) for cell in nb.cells if cell.get("cell_type") == "markdown"
+                    for m in [re.search(r"^# (.+)$", "".join(cell.get("source", "")), re.M)]
+                    if m), path.stem)
+    chapter = path.parent.name.split("_")[0].lstrip("0")
+    return f"{chapter}. {heading}" if chapter.isdigit() else heading
 
 
 def _toml_string(text: str) -> str:
