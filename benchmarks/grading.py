@@ -1,10 +1,10 @@
 """Grading speed: seconds per submission with the sandbox, the projected time for a class of
 300, and what the sandbox costs.
 
-Usage: ``python benchmarks/grading.py [--copies 12] [--no-write]``. Grades ``--copies``
+Usage: ``python -m benchmarks.grading [--copies 12] [--no-write]``. Grades ``--copies``
 copies of one realistic submission (the student edition of the mecanum exercises,
 notebooks/04_mecanum/07_exercises.ipynb, solved with the book's solutions: 5 exercises)
-with ``tools/grade.py``'s folder grading and its default number of workers, twice: in the
+with ``tools.grade``'s folder grading and its default number of workers, twice: in the
 bubblewrap sandboxes, then (for this measurement only, the grader has no such option) with
 every sandboxed command run directly, as the same Python, the same limits, the same
 pipeline. Also times one sandboxed start of Python against a plain one. Writes the
@@ -26,11 +26,9 @@ from pathlib import Path
 
 import nbformat
 
-HERE = Path(__file__).resolve().parent
-ROOT = HERE.parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "tools"))
-from _results import RESULTS, cpu, markers, write_section  # noqa: E402
+from tools.results import RESULTS, cpu, markers, write_section
+
+ROOT = Path(__file__).resolve().parents[1]
 
 NOTEBOOK = "notebooks/04_mecanum/07_exercises.ipynb"
 CLASS = 300
@@ -43,9 +41,9 @@ def _p95(values: list[float]) -> float:
 
 def submission_folder(work: Path, copies: int) -> tuple[Path, Path]:
     """``copies`` copies of the solved notebook, and an assignment of its exercises."""
-    from grading.assignment import for_notebook
-    from grading.notebook import with_solutions
-    from student_edition import student_notebook
+    from tools.grading.assignment import for_notebook
+    from tools.grading.notebook import with_solutions
+    from tools.student_edition import student_notebook
 
     book = nbformat.read(ROOT / NOTEBOOK, as_version=4)
     solved = with_solutions(student_notebook(book)[0], book)
@@ -61,12 +59,13 @@ def submission_folder(work: Path, copies: int) -> tuple[Path, Path]:
 def unsandboxed():
     """A stand-in for ``jail.Sandbox`` that runs the same command without bwrap and setpriv
     (paths inside mapped back to the host's), to measure what the sandbox costs."""
-    from grading import jail
+    from tools.grading import jail
 
     class Direct(jail.Sandbox):
         def command(self, argv: list[str]) -> list[str]:
             home = Path(tempfile.mkdtemp(prefix="bench-home-"))
             mapping = {inside: str(host) for host, inside in self.binds}
+            mapping[jail.SCRIPTS] = str(ROOT)  # tools/ is the repository's own
             job = next(Path(host) for host, inside in self.binds if inside == jail.JOB)
             text = (job / "job.json").read_text(encoding="utf-8")
             for inside, host in sorted(mapping.items(), key=lambda kv: -len(kv[0])):
@@ -76,6 +75,10 @@ def unsandboxed():
                    "MPLBACKEND": "Agg", "MPLCONFIGDIR": str(home / "mpl"),
                    "IPYTHONDIR": str(home / "ipython"), "OPENBLAS_NUM_THREADS": "1",
                    "PYTHONHASHSEED": "0"}
+            for key, value in self.env.items():  # PYTHONPATH: the scripts, the library
+                for inside, host in sorted(mapping.items(), key=lambda kv: -len(kv[0])):
+                    value = value.replace(inside, host)
+                env[key] = value
             args = []
             for arg in argv:
                 for inside, host in sorted(mapping.items(), key=lambda kv: -len(kv[0])):
@@ -88,9 +91,9 @@ def unsandboxed():
 
 
 def grade_once(folder: Path, assignment: Path, out: Path, sandboxed: bool) -> dict:
-    import grade
-    from grading import jail
-    from grading.assignment import load
+    from tools import grade
+    from tools.grading import jail
+    from tools.grading.assignment import load
 
     saved = (jail.Sandbox, jail.probe, grade._check_library_is_hidden)
     if not sandboxed:
@@ -113,7 +116,7 @@ def grade_once(folder: Path, assignment: Path, out: Path, sandboxed: bool) -> di
 def start_cost(repeats: int = 15, trivial: int = 50) -> dict[str, float]:
     """Median seconds to start a sandbox: around ``/bin/true`` (the sandbox alone) and around
     Python importing numpy, each against the same command run plainly (interleaved)."""
-    from grading import jail
+    from tools.grading import jail
 
     work = Path(tempfile.mkdtemp(prefix="bench-start-"))
     uid_base, lock = jail.claim_uids()
@@ -165,7 +168,7 @@ def main(argv: list[str] | None = None) -> int:
         "## Grading (`make grade`)",
         "",
         f"Machine: {cpu()}; load average {load:.1f} at the end of the run (the machine is "
-        f"shared with other jobs). `benchmarks/grading.py`: {boxed['n']} copies of one "
+        f"shared with other jobs). `python -m benchmarks.grading`: {boxed['n']} copies of one "
         f"submission, the student edition of `{NOTEBOOK}` solved with the book's solutions "
         "(5 exercises, the notebook's figures and animations included), graded by "
         "`tools/grade.py` with its default 2 workers: per submission, one sandbox runs the "

@@ -3,7 +3,7 @@
 
 Usage::
 
-    python tools/autograder.py ASSIGNMENT.toml [--out _build/autograder]
+    python -m tools.autograder ASSIGNMENT.toml [--out _build/autograder]
     make autograder ASSIGNMENT=assignments/chapter-01.toml
 
 The zip holds, at its root (Gradescope's layout, https://gradescope-autograders.readthedocs.io):
@@ -12,13 +12,14 @@ The zip holds, at its root (Gradescope's layout, https://gradescope-autograders.
   (3.11 or later: choose the Ubuntu 24.04 base image), bubblewrap and util-linux from apt,
   and the grader's Python packages, pinned, into ``/autograder/venv``;
 - ``run_autograder``: run for each submission: grades the notebook found in
-  ``/autograder/submission`` with ``tools/grade.py --gradescope`` (the same sandboxes and
+  ``/autograder/submission`` with ``python -m tools.grade --gradescope`` (the same sandboxes and
   judge as ``make grade``; a secret drawn for the run) and writes
   ``/autograder/results/results.json``, where each exercise's hidden cases are shown only
   after the due date and the score never exceeds the assignment's total; if the grader
   itself fails, a results.json that says so and scores 0;
-- ``assignment.toml``, ``requirements.txt``, the grader (``tools/grade.py``,
-  ``tools/grading/``) and the library (``src/wheelkin``).
+- ``assignment.toml``, ``requirements.txt``, the grader (``tools/__init__.py``,
+  ``tools/grade.py``, ``tools/grading/``) and the library (``src/wheelkin``, on the grader's
+  PYTHONPATH: the image installs no wheelkin).
 """
 
 from __future__ import annotations
@@ -34,11 +35,9 @@ from packaging.markers import default_environment
 from packaging.requirements import Requirement
 from packaging.utils import canonicalize_name
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-sys.path.insert(0, str(ROOT / "src"))
+from tools.grading.assignment import AssignmentError, load
 
-from grading.assignment import AssignmentError, load  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
 
 #: What a student's notebook and the grader import (with what these need).
 PACKAGES = ("numpy", "pymunk", "matplotlib", "ipywidgets", "ipython", "sympy", "scipy",
@@ -66,7 +65,8 @@ set -uo pipefail
 ROOT="${AUTOGRADER_ROOT:-/autograder}"
 PYTHON="${AUTOGRADER_PYTHON:-$ROOT/venv/bin/python}"
 cd "$ROOT/source" || exit 1
-"$PYTHON" tools/grade.py --gradescope "$ROOT" --assignment assignment.toml
+PYTHONPATH="$ROOT/source/src" "$PYTHON" -m tools.grade --gradescope "$ROOT" \\
+  --assignment assignment.toml
 status=$?
 if [ "$status" -ne 0 ] || [ ! -s "$ROOT/results/results.json" ]; then
   mkdir -p "$ROOT/results"
@@ -110,7 +110,8 @@ def build(assignment_path: Path, out: Path) -> Path:
     assignment = load(assignment_path)  # checked before anything is written
     out.mkdir(parents=True, exist_ok=True)
     target = out / f"{assignment_path.stem}.zip"
-    files = [ROOT / "tools" / "grade.py", *sorted((ROOT / "tools" / "grading").glob("*.py")),
+    files = [ROOT / "tools" / "__init__.py", ROOT / "tools" / "grade.py",
+             *sorted((ROOT / "tools" / "grading").glob("*.py")),
              *sorted(p for p in (ROOT / "src" / "wheelkin").rglob("*")
                      if p.is_file() and "__pycache__" not in p.parts)]
     with zipfile.ZipFile(target, "w") as archive:

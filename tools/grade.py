@@ -4,9 +4,9 @@ per exercise, each submission in sandboxes of its own.
 
 Usage::
 
-    python tools/grade.py SUBMISSIONS --assignment FILE.toml [--out DIR] [-j 2] [--fresh]
-    python tools/grade.py --gradescope /autograder --assignment FILE.toml
-    python tools/grade.py --assignment-for NOTEBOOK.ipynb     # print an assignment to edit
+    python -m tools.grade SUBMISSIONS --assignment FILE.toml [--out DIR] [-j 2] [--fresh]
+    python -m tools.grade --gradescope /autograder --assignment FILE.toml
+    python -m tools.grade --assignment-for NOTEBOOK.ipynb     # print an assignment to edit
     make grade SUBMISSIONS=folder ASSIGNMENT=file.toml        # results in _build/grades/
 
 The assignment (``grading/assignment.py``: TOML, which exercises and their points) says what
@@ -62,27 +62,25 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-TOOLS = ROOT / "tools"
-SRC = ROOT / "src"
-for _path in (TOOLS, SRC):
-    if str(_path) not in sys.path:
-        sys.path.insert(0, str(_path))
+import nbformat
+import numpy as np
 
-import nbformat  # noqa: E402
-import numpy as np  # noqa: E402
-from grading import jail, library_parts, wire  # noqa: E402
-from grading import notebook as nbtools  # noqa: E402
-from grading.assignment import (  # noqa: E402
+from tools.grading import jail, library_parts, wire
+from tools.grading import notebook as nbtools
+from tools.grading.assignment import (
     Assignment,
     AssignmentError,
     book_title,
     for_notebook,
     load,
 )
-from grading.judge import Judges  # noqa: E402
+from tools.grading.judge import Judges
 
-GRADING = TOOLS / "grading"
+ROOT = Path(__file__).resolve().parents[1]
+TOOLS = ROOT / "tools"
+#: The library's source: the notebook's sandbox gets it whole, an exercise's the parts it
+#: declares (``grading/library_parts.py``).
+SRC = ROOT / "src"
 #: Largest file graded (bytes).
 MAX_FILE_BYTES = 20_000_000
 #: Bytes a notebook may print; bytes an exercise's calls may print.
@@ -228,7 +226,7 @@ def _readable(folder: Path) -> None:
 def _check_library_is_hidden(run: Run) -> None:
     probe = {"statements": ["import importlib.util as _u\n",
                             "FOUND = _u.find_spec('wheelkin') is not None\n"],
-             "expr": "lambda: FOUND", "cases": [wire.encode_case((), {})], "library": None}
+             "expr": "lambda: FOUND", "cases": [wire.encode_case((), {})]}
     answers, _, _ = _call(run, 0, probe, None, 60.0)
     if not answers or answers.get(0, {}).get("values") != [0.0]:
         raise jail.SandboxUnavailable(
@@ -271,10 +269,25 @@ def _sandbox(run: Run, slot: int, job_folder: Path, limits: jail.Limits,
     if not (etc / "passwd").is_file():
         jail.write_etc(etc, uid)
         _readable(etc)
-    binds = [(GRADING, jail.SCRIPTS), (job_folder, jail.JOB)]
+    # The sandbox's scripts are modules of the tools package (tools/__init__.py and
+    # tools/grading/, nothing else of the repository), found through PYTHONPATH, with the
+    # library or the exercise's parts of it when there are any.
+    binds = [(TOOLS / "__init__.py", f"{jail.SCRIPTS}/tools/__init__.py"),
+             (TOOLS / "grading", f"{jail.SCRIPTS}/tools/grading"), (job_folder, jail.JOB)]
+    path = [jail.SCRIPTS]
     if library is not None:
         binds.append(library)
-    return jail.Sandbox(limits, etc, binds, slot=slot, uid_base=run.uid_base)
+        path.append(jail.LIBRARY)
+    return jail.Sandbox(limits, etc, binds, slot=slot, uid_base=run.uid_base,
+                        env={"PYTHONPATH": ":".join(path)})
+
+
+def _inside(module: str) -> list[str]:
+    """The command that runs ``tools.grading.<module>`` in a sandbox: no user site, no script
+    folder or working directory on the path (``-P -s``: ``-I`` without ``-E``, since the
+    sandbox's whole environment is the grader's own, PYTHONPATH included)."""
+    return [jail.python_in_sandbox(), "-P", "-s", "-m", f"tools.grading.{module}",
+            jail.REPORT_FD, f"{jail.JOB}/job.json"]
 
 
 def read_submission(path: Path) -> bytes:
@@ -376,14 +389,12 @@ def _run_notebook(run: Run, slot: int, cells, result: SubmissionResult) -> dict:
     """Run the notebook in its sandbox; return ``{cell index: "all" | line}`` of what ran."""
     limits = jail.Limits(seconds=run.assignment.time_limit, memory=NOTEBOOK_MEMORY,
                          output=MAX_OUTPUT_BYTES)
-    job = {"cells": [[c.index, c.source] for c in cells], "library": jail.LIBRARY,
-           "fonts": "/opt/fonts"}
+    job = {"cells": [[c.index, c.source] for c in cells], "fonts": "/opt/fonts"}
     folder = _work_job(run, job)
     try:
         box = _sandbox(run, slot, folder, limits, (SRC / "wheelkin", jail.LIBRARY + "/wheelkin"))
         box.binds.append((Path(run.work) / "fonts", "/opt/fonts"))
-        outcome = box.run([jail.python_in_sandbox(), "-I", f"{jail.SCRIPTS}/inside_run.py",
-                           jail.REPORT_FD, f"{jail.JOB}/job.json"])
+        outcome = box.run(_inside("inside_run"))
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     report: dict[int, int | str] = {}
@@ -429,8 +440,7 @@ def _call(run: Run, slot: int, job: dict, library: str | None,
     try:
         box = _sandbox(run, slot, folder, limits,
                        (Path(library), jail.LIBRARY) if library else None)
-        outcome = box.run([jail.python_in_sandbox(), "-I", f"{jail.SCRIPTS}/inside_call.py",
-                           jail.REPORT_FD, f"{jail.JOB}/job.json"])
+        outcome = box.run(_inside("inside_call"))
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     answers: dict[int, dict] = {}
@@ -479,7 +489,7 @@ def _grade_exercise(run: Run, slot: int, judges: Judges, name: str, points: floa
     cases = run.cases[name]
     visible = run.visible[name]
     job = {"statements": nbtools.function_slice(check, ran), "expr": check.expr,
-           "cases": cases, "library": jail.LIBRARY if run.library[name] else None}
+           "cases": cases}
     limit = run.assignment.call_limit
     answers, said, outcome = _call(run, slot, job, run.library[name], limit)
     if said["function"] is not None:

@@ -252,8 +252,9 @@ import site
 
 # Poison what later sandboxes load: the venv, the grader's scripts, the library.
 targets = [os.path.join(p, "sitecustomize.py") for p in site.getsitepackages()]
-targets += ["/opt/grader/wire.py", "/opt/grader/sitecustomize.py",
-            "/opt/wheelkin/wheelkin/__init__.py", "/opt/job/job.json"]
+targets += ["/opt/grader/tools/grading/wire.py", "/opt/grader/tools/__init__.py",
+            "/opt/grader/sitecustomize.py", "/opt/wheelkin/wheelkin/__init__.py",
+            "/opt/job/job.json"]
 payload = "import builtins\\nbuiltins.__import__ = None\\n"
 WROTE = []
 for target in targets:

@@ -42,7 +42,8 @@ def test_the_zip_has_gradescopes_layout(autograder_zip):
         setup = archive.read("setup.sh").decode()
         requirements = archive.read("requirements.txt").decode().splitlines()
     assert {"setup.sh", "run_autograder", "assignment.toml", "requirements.txt",
-            "tools/grade.py", "tools/grading/jail.py", "src/wheelkin/__init__.py"} <= names
+            "tools/__init__.py", "tools/grade.py", "tools/grading/__init__.py",
+            "tools/grading/jail.py", "src/wheelkin/__init__.py"} <= names
     assert modes["run_autograder"] & stat.S_IXUSR and modes["setup.sh"] & stat.S_IXUSR
     assert not any("__pycache__" in n or n.startswith(("tests/", "notebooks/")) for n in names)
     assert "bubblewrap" in setup and "/autograder/venv" in setup

@@ -20,14 +20,13 @@ from pathlib import Path
 import nbformat
 import pytest
 
+from tools.grading import notebook as nbtools
+from tools.grading.assignment import load
+from tools.student_edition import student_notebook, toc_notebooks
+from wheelkin.exercises import all_exercises
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from grading import notebook as nbtools  # noqa: E402
-from grading.assignment import load  # noqa: E402
-from student_edition import student_notebook, toc_notebooks  # noqa: E402
-
-from wheelkin.exercises import all_exercises  # noqa: E402
 
 
 def _tags(cell) -> set[str]:
@@ -67,7 +66,7 @@ def book_graded(tmp_path_factory):
     for name in sorted(all_exercises()):
         lines += ["[[exercise]]", f'name = "{name}"']
     (top / "all.toml").write_text("\n".join(lines) + "\n", encoding="utf-8")
-    done = subprocess.run([sys.executable, str(ROOT / "tools" / "grade.py"), str(folder),
+    done = subprocess.run([sys.executable, "-m", "tools.grade", str(folder),
                            "--assignment", str(top / "all.toml"), "--out", str(top / "out"),
                            "-j", "2"], capture_output=True, text=True, cwd=ROOT, timeout=3600)
     print(done.stdout)
@@ -102,12 +101,12 @@ def test_every_solved_exercise_is_one_of_the_book():
 
 def test_the_shipped_assignments_match_the_notebooks():
     """``assignments/`` has one file per notebook with exercises, naming that notebook and
-    exactly its exercises (make one with ``tools/grade.py --assignment-for NOTEBOOK``)."""
+    exactly its exercises (make one with ``python -m tools.grade --assignment-for NOTEBOOK``)."""
     shipped = {path.stem: load(path) for path in sorted((ROOT / "assignments").glob("*.toml"))}
     for rel in NOTEBOOKS:
         stem = f"{rel.parent.name}-{rel.stem}"
         assert stem in shipped, (f"no assignments/{stem}.toml: write it with .venv/bin/python "
-                                 f"tools/grade.py --assignment-for {rel.as_posix()} > "
+                                 f"-m tools.grade --assignment-for {rel.as_posix()} > "
                                  f"assignments/{stem}.toml")
         assignment = shipped.pop(stem)
         assert assignment.notebook == rel.name

@@ -18,15 +18,14 @@ from pathlib import Path
 
 import pytest
 
+from tools.grading import jail
+from tools.grading.judge import Judges
+from tools.grading.wire import encode_case
+from wheelkin.exercises import get
+from wheelkin.exercises.sandbox import grip_ramp_time
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from grading import jail  # noqa: E402
-from grading.judge import Judges  # noqa: E402
-from grading.wire import encode_case  # noqa: E402
-
-from wheelkin.exercises import get  # noqa: E402
-from wheelkin.exercises.sandbox import grip_ramp_time  # noqa: E402
 
 SUBMISSIONS = HERE / "submissions"
 ASSIGNMENT = HERE / "assignments" / "conventions.toml"
@@ -38,7 +37,7 @@ LIMIT_S = 20  # the assignment's time limit: the endless notebook's
 def grade(folder: Path, out: Path, *extra: str, timeout: float = 900):
     """Run ``make grade``'s command; return (grades.csv rows by student, results by folder,
     the log)."""
-    done = subprocess.run([sys.executable, str(ROOT / "tools" / "grade.py"), str(folder),
+    done = subprocess.run([sys.executable, "-m", "tools.grade", str(folder),
                            "--assignment", str(ASSIGNMENT), "--out", str(out), "-j", "2",
                            *extra], capture_output=True, text=True, cwd=ROOT, timeout=timeout)
     print(done.stdout)  # seconds per submission, in the log
@@ -147,7 +146,7 @@ def test_a_killed_grader_resumes_where_it_stopped(tmp_path):
     out = tmp_path / "out"
     log = tmp_path / "first.log"
     with log.open("w") as stream:
-        proc = subprocess.Popen([sys.executable, str(ROOT / "tools" / "grade.py"),
+        proc = subprocess.Popen([sys.executable, "-m", "tools.grade",
                                  str(folder), "--assignment", str(ASSIGNMENT), "--out",
                                  str(out), "-j", "2"], cwd=ROOT, stdout=stream,
                                 stderr=subprocess.STDOUT)

@@ -18,15 +18,14 @@ import nbformat
 import numpy as np
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-import grade  # noqa: E402
-from grading import jail, library_parts, wire  # noqa: E402
-from grading import notebook as nbtools  # noqa: E402
-from grading.assignment import AssignmentError, for_notebook, parse  # noqa: E402
-from grading.source import needed_statements, statements_of  # noqa: E402
+from tools import grade
+from tools.grading import jail, library_parts, wire
+from tools.grading import notebook as nbtools
+from tools.grading.assignment import AssignmentError, for_notebook, parse
+from tools.grading.source import needed_statements, statements_of
+from wheelkin.exercises import all_exercises
 
-from wheelkin.exercises import all_exercises  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _slice(code: str, names: set[str]) -> list[str]:
@@ -118,12 +117,13 @@ def test_library_parts_hold_the_declared_function_and_not_the_answer(tmp_path):
     carlike = _defined(files["wheelkin/carlike.py"])
     assert "linkage_error" in carlike and "optimal_arm_angle" not in carlike
     assert "ackermann_angles" not in carlike  # another exercise's answer, not needed here
-    code = (f"import sys; sys.path.insert(0, {str(tmp_path / 'parts')!r}); "
-            "sys.path = [p for p in sys.path if not p.endswith('src')]; "
+    # As in the grading sandbox: the parts on PYTHONPATH, the library's source out of reach.
+    code = ("import sys; sys.path = [p for p in sys.path if not p.endswith('src')]; "
             "from wheelkin.carlike import linkage_error; "
             "print(linkage_error(0.5, 2.5, 1.5, 0.15, 0.3))")
-    done = subprocess.run([sys.executable, "-I", "-c", code], capture_output=True, text=True,
-                          cwd=tmp_path, check=True)
+    env = {**os.environ, "PYTHONPATH": str(tmp_path / "parts")}
+    done = subprocess.run([sys.executable, "-P", "-s", "-c", code], capture_output=True,
+                          text=True, cwd=tmp_path, env=env, check=True)
     from wheelkin.carlike import linkage_error
 
     assert float(done.stdout) == pytest.approx(linkage_error(0.5, 2.5, 1.5, 0.15, 0.3))

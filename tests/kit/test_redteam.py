@@ -35,12 +35,11 @@ from pathlib import Path
 
 import pytest
 
+from tests.kit.test_grade import EXERCISES, grade, sandbox_uids
+from tools.grading import jail
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-sys.path.insert(0, str(HERE))
-from grading import jail  # noqa: E402
-from test_grade import EXERCISES, grade, sandbox_uids  # noqa: E402
 
 CORRECT = [1, 2, 1, 1]
 #: Expected points (rover_radius, icr, encoder_steps, ramp) and words of the verdicts.

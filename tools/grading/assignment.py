@@ -126,7 +126,7 @@ def for_notebook(nb, title: str, notebook: str | None = None, source: str = "",
                  time_limit: float = 300) -> str:
     """An assignment (TOML text) of every exercise a notebook checks, one point each:
     ``source`` (the notebook's path in the book) for the header comment."""
-    from grading.notebook import checks, code_cells
+    from tools.grading.notebook import checks, code_cells
 
     names = list(dict.fromkeys(c.name for c in checks(code_cells(nb))))
     lines = []

@@ -1,10 +1,11 @@
 """Runs inside an exercise's grading sandbox: defines the student's function from the slice of
 the notebook it needs, calls it on each case, and reports only the answers, as data.
 
-Usage (by the grader, inside bwrap): ``python -I inside_call.py REPORT_FD JOB.json``. The job
-holds the statements to run (the slice), the expression of the function, the cases (encoded
-by ``wire.py``) and, if the exercise declares library parts, the folder that holds them (the
-only ``wheelkin`` there is). Lines written on ``REPORT_FD``:
+Usage (by the grader, inside bwrap): ``python -P -s -m tools.grading.inside_call REPORT_FD
+JOB.json``, with PYTHONPATH the folder that holds the grader's scripts and, if the exercise
+declares library parts, the folder that holds them (the only ``wheelkin`` there is). The job
+holds the statements to run (the slice), the expression of the function and the cases
+(encoded by ``wire.py``). Lines written on ``REPORT_FD``:
 ``{"setup": [[statement, error], ...]}`` (statements of the slice that raised here),
 ``{"function": error}`` if the expression does not give a function, then one
 ``{"case": i, "answer": {...}}`` per case as soon as it is known, then ``{"done": true}``.
@@ -18,8 +19,7 @@ import json
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import wire
+from tools.grading import wire
 
 
 class _NoShell:
@@ -45,8 +45,6 @@ def main() -> int:
     fd, job_path = int(sys.argv[1]), sys.argv[2]
     with open(job_path, encoding="utf-8") as f:
         job = json.load(f)
-    if job.get("library"):
-        sys.path.insert(0, job["library"])
     # The report stream is a private duplicate: the student's code can close fd REPORT_FD
     # and still not silence it (nor can it forge answers the grader would believe better
     # than its own function's: the verdict is computed outside from these values).

@@ -1,9 +1,10 @@
 """Runs inside the notebook's sandbox: executes a submitted notebook's code cells, top to
 bottom, in an IPython shell, and reports what ran.
 
-Usage (by the grader, inside bwrap): ``python -I inside_run.py REPORT_FD JOB.json``. The job
-holds the code cells (index and source) and where the library and matplotlib's font list are
-mounted. For each cell it writes one JSON line on ``REPORT_FD``: ``{"cell": i, "ran": "all"}``,
+Usage (by the grader, inside bwrap): ``python -P -s -m tools.grading.inside_run REPORT_FD
+JOB.json``, with PYTHONPATH the folders of the grader's scripts and of the library. The job
+holds the code cells (index and source) and where matplotlib's font list is mounted. For
+each cell it writes one JSON line on ``REPORT_FD``: ``{"cell": i, "ran": "all"}``,
 ``{"cell": i, "ran": LINE, "error": "..."}`` (stopped by an error raised on that line of the
 cell's Python), or ``{"cell": i, "ran": 0, "error": "..."}`` (did not compile); then
 ``{"done": true}``. A cell that raises does not stop the notebook (as in the book's student
@@ -44,8 +45,6 @@ def main() -> int:
     report = os.fdopen(fd, "w", buffering=1, encoding="utf-8")
     with open(job_path, encoding="utf-8") as f:
         job = json.load(f)
-    if job.get("library"):
-        sys.path.insert(0, job["library"])
     cache = os.environ.get("MPLCONFIGDIR")
     if cache and job.get("fonts"):
         os.makedirs(cache, exist_ok=True)

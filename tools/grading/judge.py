@@ -23,10 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent))
+from tools.grading import wire
 
-from grading import wire  # noqa: E402
+#: The repository (or the autograder's folder) whose tools package the judge process imports.
+ROOT = Path(__file__).resolve().parents[2]
 
 
 class _Opaque:
@@ -104,9 +104,9 @@ class Judges:
         self.proc: subprocess.Popen | None = None
 
     def _start(self) -> subprocess.Popen:
-        env = {**os.environ, "PYTHONPATH": str(self.src), "MPLBACKEND": "Agg",
-               "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
-        return subprocess.Popen([sys.executable, str(HERE / "judge.py"), "serve"],
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), str(self.src)]),
+               "MPLBACKEND": "Agg", "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"}
+        return subprocess.Popen([sys.executable, "-m", "tools.grading.judge", "serve"],
                                 stdin=subprocess.PIPE, stdout=subprocess.PIPE,
                                 stderr=subprocess.DEVNULL, text=True, env=env,
                                 start_new_session=True)
@@ -146,4 +146,4 @@ class Judges:
 if __name__ == "__main__":
     if sys.argv[1:] == ["serve"]:
         sys.exit(serve())
-    sys.exit("usage: judge.py serve")
+    sys.exit("usage: python -m tools.grading.judge serve")

@@ -20,7 +20,13 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
-from grading.source import Statement, bound_name, filtered_import, needed_statements, statements_of
+from tools.grading.source import (
+    Statement,
+    bound_name,
+    filtered_import,
+    needed_statements,
+    statements_of,
+)
 
 PACKAGE = "wheelkin"
 

@@ -14,7 +14,12 @@ from __future__ import annotations
 import ast
 from dataclasses import dataclass
 
-from grading.source import Statement, expression_names, needed_statements, statements_of
+from tools.grading.source import (
+    Statement,
+    expression_names,
+    needed_statements,
+    statements_of,
+)
 
 #: The name of the exercises' check function (``from wheelkin.exercises import check``).
 CHECK = "check"
