@@ -20,6 +20,7 @@ tests), so that none of them hard-codes the list of chapters. Two layouts live s
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 from pathlib import Path
 
 import yaml
@@ -67,6 +68,95 @@ def toc_files(toc: Path = TOC) -> list[str]:
         pages.append(_strip(data["root"]))
     walk({k: v for k, v in data.items() if k != "root"})
     return pages
+
+
+@dataclass(frozen=True)
+class Division:
+    """One top-level division of the book, as both editions number it.
+
+    ``matter`` is ``"front"`` (the root page and the chapters of the unnumbered parts before
+    the first numbered part: preface, how to use, notation), ``"main"`` (the chapters of the
+    parts marked ``numbered: true``, numbered 1, 2, ... across parts) or ``"back"`` (the
+    chapters of the unnumbered parts after the first numbered one: the appendices, lettered
+    A, B, ...). ``pages`` is the division's page and its ``sections:``, in reading order.
+    """
+
+    page: str
+    matter: str
+    number: str | None
+    part: str | None
+    pages: tuple[str, ...]
+
+    @property
+    def label(self) -> str:
+        """How the text names it: "Chapter 6", "Appendix A", or "" (front matter)."""
+        if self.number is None:
+            return ""
+        return ("Chapter " if self.matter == "main" else "Appendix ") + self.number
+
+
+def _letters(index: int) -> str:
+    """A, B, ..., Z, AA, AB, ... for 0, 1, ..."""
+    out = ""
+    index += 1
+    while index:
+        index, rest = divmod(index - 1, 26)
+        out = chr(ord("A") + rest) + out
+    return out
+
+
+def book_structure(toc: Path = TOC) -> list[Division]:
+    """The book's divisions in reading order, numbered as both editions number them.
+
+    Derived from the toc's parts alone, so a new chapter or back-matter page needs nothing
+    else: a part marked ``numbered: true`` holds chapters; the unnumbered parts before the
+    first numbered part are front matter, those after it back matter (appendices).
+
+    >>> [(d.page, d.matter, d.number) for d in book_structure()][:4]  # doctest: +ELLIPSIS
+    [('book/intro', 'front', None), ('book/how_to_use', 'front', None), ...]
+    """
+    data = yaml.safe_load(Path(toc).read_text(encoding="utf-8")) or {}
+
+    def pages_of(entry) -> tuple[str, ...]:
+        found: list[str] = []
+
+        def walk(node) -> None:
+            if isinstance(node, list):
+                for item in node:
+                    walk(item)
+            elif isinstance(node, dict):
+                if isinstance(node.get("file"), str):
+                    found.append(_strip(node["file"]))
+                walk(node.get("sections"))
+
+        walk(entry)
+        return tuple(found)
+
+    out: list[Division] = []
+    if isinstance(data.get("root"), str):
+        root = _strip(data["root"])
+        out.append(Division(root, "front", None, None, (root,)))
+    parts = data.get("parts") or [{"chapters": data.get("chapters") or [],
+                                   "numbered": True}]
+    seen_numbered = False
+    chapter = appendix = 0
+    for part in parts:
+        numbered = bool(part.get("numbered"))
+        seen_numbered = seen_numbered or numbered
+        for entry in part.get("chapters") or []:
+            if not isinstance(entry.get("file"), str):
+                continue
+            if numbered:
+                chapter += 1
+                matter, number = "main", str(chapter)
+            elif seen_numbered:
+                matter, number = "back", _letters(appendix)
+                appendix += 1
+            else:
+                matter, number = "front", None
+            out.append(Division(_strip(entry["file"]), matter, number, part.get("caption"),
+                                pages_of(entry)))
+    return out
 
 
 def toc_notebooks(toc: Path = TOC, root: Path = ROOT) -> list[Path]:
