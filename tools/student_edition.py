@@ -132,6 +132,7 @@ def student_notebook(nb: nbformat.NotebookNode) -> tuple[nbformat.NotebookNode, 
             changes["solutions"] += 1
             continue
         if "solution-note" in tags:
+            # Whole: a pointer, an answer or a verdict. A task tagged so was refused above.
             changes["notes"] += 1
             continue
         if cell.cell_type == "markdown":

@@ -64,6 +64,25 @@ def test_transform_removes_solutions_and_notes_keeps_stubs():
     assert len(nb.cells) == 4, "the original notebook is not changed"
 
 
+def test_a_note_with_a_task_is_refused_not_deleted():
+    """An exercise's prompt tagged ``solution-note`` would vanish with its pointer: the tool
+    refuses the notebook and names the cell, rather than print a stub without its task."""
+    note = nbformat.v4.new_markdown_cell(
+        "### Exercise 1\n\nWrite `f(x)` returning twice `x`. The solution is folded\nbelow.")
+    note.metadata["tags"] = ["solution-note"]
+    with pytest.raises(ValueError, match=r"cell 0 .*statement.*Exercise"):
+        student_notebook(nbformat.v4.new_notebook(cells=[note]))
+
+
+def test_a_note_with_an_answer_goes_whole():
+    """A ``solution-note`` cell that gives a verdict is removed whole, not just its pointer."""
+    note = nbformat.v4.new_markdown_cell(
+        "A 4 m corridor is not safe: it needs a fix on the way. The solution is folded below.")
+    note.metadata["tags"] = ["solution-note"]
+    student, changes = student_notebook(nbformat.v4.new_notebook(cells=[note]))
+    assert student.cells == [] and changes["notes"] == 1
+
+
 @pytest.mark.parametrize("rel", NOTEBOOKS, ids=lambda p: p.as_posix())
 def test_student_notebook(rel, student_edition):
     out, _ = student_edition
