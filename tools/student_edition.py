@@ -92,6 +92,9 @@ def toc_notebooks(root: Path = ROOT) -> list[Path]:
             if (root / (page + ".ipynb")).is_file()]
 
 
+_LABEL_LINE = re.compile(r"^[ \t]*\([\w-]+\)=[ \t]*$")
+
+
 def remove_solution_sentences(text: str) -> str:
     """``text`` without sentences that point at a folded solution."""
     text = SOLUTION_ASIDE.sub("", text)
@@ -106,7 +109,8 @@ def remove_solution_sentences(text: str) -> str:
             para.clear()
 
     for line in text.split("\n"):  # paragraphs: runs of lines, headings on their own
-        if not line.strip() or line.lstrip().startswith(("#", ":::", "```", "(")):
+        if not line.strip() or line.lstrip().startswith(("#", ":::", "```")) \
+                or _LABEL_LINE.match(line):
             flush()
             out.append(line)
         else:

@@ -64,6 +64,12 @@ def test_transform_removes_solutions_and_notes_keeps_stubs():
     assert len(nb.cells) == 4, "the original notebook is not changed"
 
 
+def test_a_paragraph_line_that_opens_a_parenthesis_is_prose():
+    """Only ``(label)=`` lines break a paragraph: a wrapped line may start with "("."""
+    text = "Write it for a turn\n({ref}`a-label`). The solution is folded below.\n\n(x-y)=\n# T"
+    assert remove_solution_sentences(text) == "Write it for a turn\n({ref}`a-label`).\n\n(x-y)=\n# T"
+
+
 def test_a_note_with_a_task_is_refused_not_deleted():
     """An exercise's prompt tagged ``solution-note`` would vanish with its pointer: the tool
     refuses the notebook and names the cell, rather than print a stub without its task."""
