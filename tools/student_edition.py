@@ -56,7 +56,7 @@ INSTRUCTOR_PAGES = ("book/instructors",)
 #: A sentence that points at a folded solution (the fallback when a cell is not tagged
 #: ``solution-note``): it mentions a solution and folding, hiding or "below".
 SOLUTION_SENTENCE = re.compile(
-    r"(?:(?<=[.!?])\s+|^)"                               # where a sentence starts
+    r"(?:(?<=[.!?])\s+|(?<=[.!?][)\]])\s+|^)"             # where a sentence starts
     r"[^.!?]*?\bsolutions?\b[^.!?]*?\b(?:folded|fold|hidden|collapsed|below)\b[^.!?]*[.!?]",
     re.IGNORECASE)
 #: The same in parentheses: "(the solution is folded below)".

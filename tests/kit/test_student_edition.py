@@ -70,6 +70,11 @@ def test_a_paragraph_line_that_opens_a_parenthesis_is_prose():
     assert remove_solution_sentences(text) == "Write it for a turn\n({ref}`a-label`).\n\n(x-y)=\n# T"
 
 
+def test_a_sentence_may_start_after_a_closing_parenthesis():
+    text = "Write it. (Which way does it turn?) The solution is folded below."
+    assert remove_solution_sentences(text) == "Write it. (Which way does it turn?)"
+
+
 def test_a_note_with_a_task_is_refused_not_deleted():
     """An exercise's prompt tagged ``solution-note`` would vanish with its pointer: the tool
     refuses the notebook and names the cell, rather than print a stub without its task."""
