@@ -262,7 +262,7 @@ def section(name: str, site: Path, rows: list[Row], title: str) -> str:
 `benchmarks/reading.py` over `{shown_site}`, headless Chromium ({CHROMIUM}); machine: {cpu()}.
 Height, words, figures and first-visit weight at a 1280x900 window (first visit: every
 response of an empty-cache load, page and assets); code lines at a 1366x768 window (visible:
-not folded; overflowing: wider than their code box). Figure text on screen =
+not hidden; overflowing: wider than their code box). Figure text on screen =
 font pt x dpi / 72 x shown width / PNG width, dpi from the PNG's pHYs chunk; `~` marks
 pages whose smallest figure font is not recorded in the PNG and is assumed to be matplotlib's
 default tick label size, 10 pt (an upper bound: explicit smaller fonts are not seen).
