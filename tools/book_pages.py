@@ -19,6 +19,7 @@ tests), so that none of them hard-codes the list of chapters. Two layouts live s
 
 from __future__ import annotations
 
+import json
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -86,6 +87,20 @@ class Division:
     number: str | None
     part: str | None
     pages: tuple[str, ...]
+    #: (page, the page it is listed under) for every page but the division's own.
+    parents: tuple[tuple[str, str], ...] = ()
+
+    def level(self, page: str) -> int:
+        """1 for the division's page, 2 for a page listed under it, and so on."""
+        parents = dict(self.parents)
+        level = 1
+        while page in parents:
+            level, page = level + 1, parents[page]
+        return level
+
+    def has_pages(self, page: str) -> bool:
+        """Whether pages are listed under ``page`` (a chapter's landing page, an index)."""
+        return any(parent == page for _, parent in self.parents)
 
     @property
     def label(self) -> str:
@@ -117,20 +132,25 @@ def book_structure(toc: Path = TOC) -> list[Division]:
     """
     data = yaml.safe_load(Path(toc).read_text(encoding="utf-8")) or {}
 
-    def pages_of(entry) -> tuple[str, ...]:
+    def pages_of(entry) -> tuple[tuple[str, ...], tuple[tuple[str, str], ...]]:
         found: list[str] = []
+        parents: list[tuple[str, str]] = []
 
-        def walk(node) -> None:
+        def walk(node, parent: str | None) -> None:
             if isinstance(node, list):
                 for item in node:
-                    walk(item)
+                    walk(item, parent)
             elif isinstance(node, dict):
+                page = parent
                 if isinstance(node.get("file"), str):
-                    found.append(_strip(node["file"]))
-                walk(node.get("sections"))
+                    page = _strip(node["file"])
+                    found.append(page)
+                    if parent is not None:
+                        parents.append((page, parent))
+                walk(node.get("sections"), page)
 
-        walk(entry)
-        return tuple(found)
+        walk(entry, None)
+        return tuple(found), tuple(parents)
 
     out: list[Division] = []
     if isinstance(data.get("root"), str):
@@ -155,8 +175,28 @@ def book_structure(toc: Path = TOC) -> list[Division]:
             else:
                 matter, number = "front", None
             out.append(Division(_strip(entry["file"]), matter, number, part.get("caption"),
-                                pages_of(entry)))
+                                *pages_of(entry)))
     return out
+
+
+def page_title(page: str, root: Path = ROOT) -> str | None:
+    """A page's title as both editions show it: its first level-one heading (a markdown file,
+    or a notebook's markdown cells), None when it has none."""
+    for suffix in (".md", ".ipynb"):
+        path = root / f"{page}{suffix}"
+        if not path.is_file():
+            continue
+        if suffix == ".md":
+            texts = [path.read_text(encoding="utf-8")]
+        else:
+            cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+            texts = ["".join(c["source"]) for c in cells if c["cell_type"] == "markdown"]
+        for text in texts:
+            found = re.search(r"^#[ \t]+(.+?)[ \t]*$", text, re.M)
+            if found:
+                return found.group(1)
+        return None
+    return None
 
 
 def toc_notebooks(toc: Path = TOC, root: Path = ROOT) -> list[Path]:

@@ -5,23 +5,29 @@ Usage::
 
     python -m tools.pdf_edition [--out _build/pdf]     # or: make pdf  (make tex installs TeX)
 
-The book is copied into ``_build/pdf_src/`` and its notebooks transformed for paper:
+The book is copied into ``_build/pdf_src/`` and the copy is made into a printed book
+(docs/DESIGN.md, "The printed edition"):
 
+- numbered as the web edition, from ``_toc.yml``'s parts (``book_pages.book_structure``): the
+  preface, how to use and notation as front matter (roman pages, no numbers), the chapters in
+  their parts, the back matter as appendices A, B, ...; a chapter's landing page prints its own
+  headings without numbers, so that its first section is N.1 as on the web;
 - every animation (matplotlib's ``to_jshtml`` player, frames embedded as base64 PNG) becomes
-  three of its frames (first, middle, last), each printed at the animation's own size (the
-  same size and legibility as the static figures), followed by its caption;
-- live panels (cells whose output is a widget, or a ``remove-output`` cell that makes a panel)
-  and their "Live panel" margin notes are left out;
-- folded code (``hide-input``) is left out, its output kept;
-- solutions are left out (a page cannot fold them, and the printed book is the one a class
-  gets; instructors have them in the notebooks), with the sentences that point at them;
-  exercise stubs are printed without output.
+  three of its frames (first, middle, last), each printed at the animation's own size, followed
+  by its caption;
+- live panels and their "Live panel" margin notes are left out; folded code (``hide-input``) is
+  left out, its output kept; solutions are left out, as in the student edition; prose about
+  folded cells and the live panel is said as paper says it (``pdf_text.paper_wording``);
+- each *check your understanding* answer moves to the end of its chapter, numbered, and the
+  question points to it by number and page (and back);
+- cross-references print the target's number and page (``tools/pdf_latex.py``);
+- the index lists the notation page's symbols and the terms of ``book/index_terms.yml``.
 
 Then ``jupyter-book build --builder pdflatex`` runs XeLaTeX (Unicode: the book's Greek,
-arrows and check marks) with the FreeSerif/FreeSans and DejaVu Sans Mono fonts; the PDF is
-copied to ``<out>/wheelkin.pdf``. The TeX packages: ``make tex`` (Debian: texlive-xetex,
-texlive-latex-extra, texlive-fonts-recommended, latexmk, xindy, fonts-freefont-otf,
-fonts-dejavu-core, poppler-utils).
+arrows and check marks) with the FreeSerif/FreeSans and DejaVu Sans Mono fonts, and xindy for
+the index; the PDF is copied to ``<out>/wheelkin.pdf``. The TeX packages: ``make tex`` (Debian:
+texlive-xetex, texlive-latex-extra, texlive-fonts-recommended, latexmk, xindy,
+fonts-freefont-otf, fonts-dejavu-core, poppler-utils).
 """
 
 from __future__ import annotations
@@ -41,7 +47,8 @@ from pathlib import Path
 import nbformat
 import yaml
 
-from tools.book_pages import toc_files
+from tools import pdf_text
+from tools.book_pages import book_structure, toc_files
 from tools.student_edition import (
     copy_includes,
     remove_solution_sentences,
@@ -96,7 +103,7 @@ def strip_outputs(markup: str, index: int, count: int) -> list[dict]:
                                   "text/plain": f"<frame {pick + 1} of {len(frames)}>"},
             metadata={"image/png": {"alt": _plain(alt.group(1)) if alt else text}}))
     shown = ", ".join(str(p + 1) for p in picks)
-    note = f"*Animation, frames {shown} of {len(frames)}.* {text}".strip()
+    note = f"*Animation, frames {shown} of {len(frames)}.* {pdf_text.paper_caption(text)}".strip()
     outputs.append(nbformat.v4.new_output("display_data", data={"text/markdown": note,
                                                                 "text/plain": note}))
     return outputs
@@ -123,7 +130,7 @@ def is_live_panel(cell) -> bool:
 def print_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
     """The printed edition of one notebook, and what changed, counted."""
     nb, changes = student_notebook(nb)
-    changes.update(animations=0, panels=0, folded=0)
+    changes.update(animations=0, panels=0, folded=0, wording=0)
     cells = []
     for cell in nb.cells:
         if is_live_panel(cell):
@@ -131,13 +138,17 @@ def print_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
             continue
         tags = _tags(cell)
         if cell.cell_type == "markdown":
-            new = _MARGIN_PANEL.sub("", cell.source)
+            new = pdf_text.paper_wording(_MARGIN_PANEL.sub("", cell.source))
             if new != cell.source:
+                changes["wording"] += 1
                 cell.source = new
                 if not new.strip():
                     continue
             cells.append(cell)
             continue
+        figure = cell.metadata.get("mystnb", {}).get("figure", {})
+        if figure.get("caption"):
+            figure["caption"] = pdf_text.paper_wording(figure["caption"])
         if cell.cell_type != "code":
             cells.append(cell)
             continue
@@ -165,32 +176,231 @@ def print_notebook(nb) -> tuple[nbformat.NotebookNode, dict]:
     return nb, changes
 
 
-def copy_sources(src: Path) -> list[Path]:
-    """The book into ``src``, its notebooks transformed; returns the notebooks written."""
-    shutil.rmtree(src, ignore_errors=True)
-    src.mkdir(parents=True)
-    shutil.copytree(ROOT / "book", src / "book")
-    shutil.copy2(ROOT / "_toc.yml", src / "_toc.yml")
-    written = []
+#: The printed edition's LaTeX: front matter (roman pages, no numbers), main matter (arabic,
+#: numbered chapters in parts), appendices (lettered), the answers at a chapter's end, and the
+#: cross-references' number and page (tools/pdf_latex.py writes them).
+PREAMBLE = r"""
+\let\wheelkinhyperlink\hyperlink
+\DeclareRobustCommand{\hyperlink}[2]{\wheelkinhyperlink{#1}{#2}}
+\addto\captionsenglish{\renewcommand{\contentsname}{Contents}}
+\usepackage{etoolbox}
+\makeatletter
+\newcommand\wkdepth{-1}
+\pretocmd{\chapter}{\setcounter{secnumdepth}{\wkdepth}}{}{}
+\renewcommand{\sphinxtableofcontents}{%
+  \pagenumbering{roman}%
+  \begingroup\parskip\z@skip\sphinxtableofcontentshook\tableofcontents\endgroup
+  \if@openright\cleardoublepage\else\clearpage\fi}
+\newcommand\wkfrontmatter{\renewcommand\wkdepth{-1}}
+\newcommand\wkmainmatter{\cleardoublepage\pagenumbering{arabic}\renewcommand\wkdepth{2}%
+  \setcounter{secnumdepth}{2}}
+\newcommand\wkpart[1]{\part{#1}}
+\newcommand\wkappendices{\cleardoublepage\appendix\renewcommand\wkdepth{2}%
+  \setcounter{secnumdepth}{2}\part*{Appendices}\addcontentsline{toc}{part}{Appendices}}
+% The bibliography in the References appendix (tools/pdf_latex.py): a list, no chapter.
+\patchcmd{\thebibliography}{\chapter*{\bibname}\@mkboth{\MakeUppercase\bibname}%
+  {\MakeUppercase\bibname}}{}{}{}
+\renewenvironment{sphinxthebibliography}[1]{\begin{thebibliography}{#1}}{\end{thebibliography}}
+\makeatother
+\newcommand\wkxref[2]{#1~\ref{#2}, p.~\pageref{#2}}
+\newcommand\wknumref[2]{\hyperref[#2]{#1~\ref*{#2}} (p.~\pageref*{#2})}
+\newcommand\wknumrefcomma[2]{\hyperref[#2]{#1~\ref*{#2}}, p.~\pageref*{#2}}
+\newcommand\wkpageref[1]{p.~\pageref{#1}}
+\newcommand\wkquestionstart[1]{\phantomsection\label{wkq:#1}}
+\newcommand\wkquestion[1]{\textit{Answer~\hyperref[wka:#1]{#1} on p.~\pageref{wka:#1}.}}
+\newcommand\wkanswers{\section*{Answers to the questions}%
+  \addcontentsline{toc}{section}{Answers to the questions}\markright{Answers to the questions}}
+\newcommand\wkanswer[1]{\phantomsection\label{wka:#1}%
+  \textbf{Answer~#1} (question on p.~\pageref{wkq:#1}).\enspace}
+"""
+
+#: The printed edition's root page: the title only (the preface becomes a chapter of the front
+#: matter, "Preface", so that every page of the book is a chapter under it).
+PRINT_ROOT = "print_root"
+PREFACE_TITLE = "Preface"
+
+
+class Page:
+    """One page of the printed copy: a notebook or a markdown file, transformed in memory."""
+
+    def __init__(self, page: str, path: Path):
+        self.page, self.path = page, path
+        self.nb = nbformat.read(path, as_version=4) if path.suffix == ".ipynb" else None
+        self.text = None if self.nb is not None else path.read_text(encoding="utf-8")
+
+    def markdown(self) -> list:
+        """The markdown cells (a notebook) or the page itself, as objects with ``source``."""
+        if self.nb is not None:
+            return [cell for cell in self.nb.cells if cell.cell_type == "markdown"]
+        return [self]
+
+    @property
+    def source(self) -> str:
+        return self.text
+
+    @source.setter
+    def source(self, value: str) -> None:
+        self.text = value
+
+    def prepend(self, markdown: str) -> None:
+        if self.nb is not None:
+            self.nb.cells.insert(0, nbformat.v4.new_markdown_cell(markdown))
+        else:
+            self.text = markdown + "\n" + self.text
+
+    def append(self, markdown: str) -> None:
+        if self.nb is not None:
+            self.nb.cells.append(nbformat.v4.new_markdown_cell(markdown))
+        else:
+            self.text = self.text.rstrip("\n") + "\n\n" + markdown
+
+    def write(self, dest: Path) -> None:
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        if self.nb is not None:
+            nbformat.write(self.nb, dest)
+        else:
+            dest.write_text(self.text, encoding="utf-8")
+
+
+def _load_pages(src: Path) -> dict[str, Page]:
+    """Every page of the toc, transformed for paper (notebooks: :func:`print_notebook`)."""
+    pages: dict[str, Page] = {}
     for page in toc_files(ROOT / "_toc.yml"):
         for suffix in (".md", ".rst", ".ipynb"):
             path = ROOT / (page + suffix)
-            if not path.is_file() or (src / (page + suffix)).exists():
+            if path.is_file():
+                loaded = Page(page, path)
+                if loaded.nb is not None:
+                    loaded.nb, _ = print_notebook(loaded.nb)
+                else:
+                    loaded.text = pdf_text.paper_wording(
+                        remove_solution_sentences(_MARGIN_PANEL.sub("", loaded.text)))
+                pages[page] = loaded
+                break
+    return pages
+
+
+def arrange(pages: dict[str, Page], structure: list, preface: str) -> dict[str, int]:
+    """Front matter, parts, appendices, landing pages and answers, in the pages; returns the
+    number of questions of each division. ``preface`` is the book's root page."""
+    questions: dict[str, int] = {}
+    structure = [d for d in structure if d.page in pages]
+    main = [d for d in structure if d.matter == "main"]
+    back = [d for d in structure if d.matter == "back"]
+    previous_part = None
+    for division in structure:
+        first = pages.get(division.page)
+        if first is None:
+            continue
+        markers = []
+        if division is structure[0]:
+            markers.append(r"\wkfrontmatter")
+        if main and division is main[0]:
+            markers.append(r"\wkmainmatter")
+        if division.matter == "main" and division.part and division.part != previous_part:
+            markers.append(r"\wkpart{" + division.part + "}")
+            previous_part = division.part
+        if back and division is back[0]:
+            markers.append(r"\wkappendices")
+        if division.page == preface:
+            for cell in first.markdown()[:1]:
+                cell.source = pdf_text.retitle(cell.source, PREFACE_TITLE)
+        if markers:
+            first.prepend(pdf_text.raw_latex(*markers))
+        answers: list[pdf_text.Answer] = []
+        for name in division.pages:
+            page = pages.get(name)
+            if page is None:
                 continue
-            (src / page).parent.mkdir(parents=True, exist_ok=True)
-            if suffix == ".ipynb":
-                nb, _ = print_notebook(nbformat.read(path, as_version=4))
-                nbformat.write(nb, src / (page + suffix))
-                written.append(src / (page + suffix))
-            else:
-                text = path.read_text(encoding="utf-8")
-                (src / (page + suffix)).write_text(
-                    remove_solution_sentences(_MARGIN_PANEL.sub("", text)), encoding="utf-8")
-    copy_includes(src)
+            for cell in page.markdown():
+                if division.has_pages(name):
+                    cell.source = pdf_text.headings_to_rubrics(cell.source)
+                cell.source = pdf_text.split_answers(cell.source, division.number or "",
+                                                     answers)
+        questions[division.page] = len(answers)
+        if answers:
+            pages[division.pages[-1]].append(pdf_text.answers_section(answers))
+    return questions
+
+
+#: The label of the notation page, whose tables' symbols the index lists.
+NOTATION_LABEL = "notation"
+#: The terms of the index (``book/index_terms.yml``).
+INDEX_TERMS = Path("book") / "index_terms.yml"
+
+
+def index_entries(pages: dict[str, Page], terms: list[pdf_text.Term]) -> dict[str, int]:
+    """The index: the notation page's symbols (in their rows, and where each is introduced)
+    and the terms, on the pages that discuss them. Returns the entries placed, by kind."""
+    counts = {"symbols": 0, "introduced": 0, "terms": 0}
+    label_line = re.compile(rf"^\({NOTATION_LABEL}\)=[ \t]*$", re.M)
+    notation = next((p for p in pages.values()
+                     if any(label_line.search(c.source) for c in p.markdown())), None)
+    if notation is not None:
+        for cell in notation.markdown():
+            cell.source, at_labels = pdf_text.index_symbols(cell.source)
+            counts["symbols"] += sum(len(v) for v in at_labels.values())
+            for label, entries in at_labels.items():
+                for page in pages.values():
+                    for target in page.markdown():
+                        placed = pdf_text.after_label(target.source, label, "".join(entries))
+                        if placed is not None:
+                            target.source = placed
+                            counts["introduced"] += len(entries)
+    placed: set[str] = set()
+    for page in pages.values():
+        counts["terms"] += pdf_text.index_terms(page.markdown(), terms, placed)
+    counts["terms"] += pdf_text.index_rare_terms([p.markdown() for p in pages.values()], terms,
+                                                 placed)
+    return counts
+
+
+def print_toc(toc: dict) -> dict:
+    """The printed edition's toc: its root is the title page, the book's root the first page
+    of the front matter, in a part of its own (so that its chapter is never numbered)."""
+    toc = json.loads(json.dumps(toc))
+    root = toc.pop("root")
+    parts = toc.get("parts")
+    if parts is None:
+        parts = [{"numbered": True, "chapters": toc.pop("chapters", [])}]
+    toc["parts"] = [{"caption": PREFACE_TITLE, "chapters": [{"file": root}]}, *parts]
+    return {"format": toc.pop("format", "jb-book"), "root": PRINT_ROOT, **toc}
+
+
+def pdf_text_root(toc: dict) -> str:
+    """The book's root page (``book/intro``), without its suffix."""
+    return str(toc["root"]).rsplit(".", 1)[0] if str(toc["root"]).endswith(
+        (".md", ".ipynb")) else str(toc["root"])
+
+
+def copy_sources(src: Path) -> list[Path]:
+    """The book into ``src``, transformed for paper; returns the notebooks written."""
+    shutil.rmtree(src, ignore_errors=True)
+    src.mkdir(parents=True)
+    shutil.copytree(ROOT / "book", src / "book")
+    book_toc = yaml.safe_load((ROOT / "_toc.yml").read_text(encoding="utf-8"))
+    toc = print_toc(book_toc)
+    (src / "_toc.yml").write_text(yaml.safe_dump(toc, sort_keys=False), encoding="utf-8")
     config = yaml.safe_load((ROOT / "_config.yml").read_text(encoding="utf-8"))
+    (src / f"{PRINT_ROOT}.md").write_text(f"# {config['title']}\n", encoding="utf-8")
+    pages = _load_pages(src)
+    arrange(pages, book_structure(src / "_toc.yml"), pdf_text_root(book_toc))
+    terms_file = ROOT / INDEX_TERMS
+    terms = pdf_text.load_terms(yaml.safe_load(terms_file.read_text(encoding="utf-8"))
+                                if terms_file.is_file() else [])
+    index_entries(pages, terms)
+    written = []
+    for name, page in pages.items():
+        dest = src / (name + page.path.suffix)
+        page.write(dest)
+        if page.nb is not None:
+            written.append(dest)
+    copy_includes(src)
     config["exclude_patterns"] = [*config.get("exclude_patterns", []), "_build"]
     sphinx = config.setdefault("sphinx", {})
-    sphinx.pop("local_extensions", None)  # the web edition's (offline assets, redirects)
+    # The web edition's extensions (offline assets, redirects, numbering) are not needed:
+    # LaTeX numbers the printed book itself; tools/pdf_latex.py prints the references.
+    sphinx["local_extensions"] = {"pdf_latex": str(ROOT / "tools")}
     sphinx_config = sphinx.setdefault("config", {})
     sphinx_config["latex_elements"] = {
         "papersize": "a4paper",
@@ -199,12 +409,14 @@ def copy_sources(src: Path) -> list[Path]:
         "fontpkg": "\\setmainfont{FreeSerif}\n\\setsansfont{FreeSans}\n"
                    "\\setmonofont{DejaVu Sans Mono}[Scale=0.85]\n",
         "figure_align": "H",
+        # The PDF's outline numbers its chapters as the book does ("6 Odometry: ...").
+        "passoptionstopackages": "\\PassOptionsToPackage{bookmarksnumbered}{hyperref}\n",
         # A citation in a section title (the API pages' docstrings): a robust \\hyperlink
         # survives titlesec's moving arguments.
-        "preamble": "\\let\\wheelkinhyperlink\\hyperlink\n"
-                    "\\DeclareRobustCommand{\\hyperlink}[2]{\\wheelkinhyperlink{#1}{#2}}\n",
+        "preamble": PREAMBLE,
     }
     sphinx_config["latex_show_urls"] = "footnote"
+    sphinx_config["latex_domain_indices"] = False  # the library is appendix F, not an index
     config["latex"] = {"latex_engine": "xelatex", "use_jupyterbook_latex": False,
                        "latex_documents": {"targetname": "wheelkin.tex"}}
     (src / "_config.yml").write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
