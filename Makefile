@@ -198,7 +198,8 @@ tex:
 	  DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends $(TEX_PACKAGES) </dev/null; \
 	else echo "tex: run as root, or: sudo apt-get install $(TEX_PACKAGES)"; exit 1; fi
 
-# The printed edition, then its checks (the pdf layer of make test).
+# The printed edition, then its checks (the pdf layer of make test): tests/pdf (chapters,
+# answers, wording, references, index; and the numbering both editions share).
 pdf: tex $(STAMP)
 	$(BIN)/python -m tools.pdf_edition --out _build/pdf
 	$(PYTEST) tests/pdf -o addopts="-ra"
