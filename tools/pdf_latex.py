@@ -12,6 +12,7 @@
   its own at the end of the book).
 - The index is the book's terms and symbols (``tools/pdf_edition.py`` places them); the
   library's objects are left out of it (the library reference lists them by module).
+- Paper's wording (``pdf_text.paper_wording``) applies to the library's docstrings too.
 - ``{wklatex}`` is an inline role that passes LaTeX through (the questions' pointers to their
   answers, index entries).
 """
@@ -195,6 +196,33 @@ class _BibliographyInPlace(SphinxPostTransform):
 _BIBLIOGRAPHY = "wheelkin: the bibliography goes here"
 
 
+class _PaperWording(SphinxPostTransform):
+    """The wording for paper (``pdf_text.paper_wording``) in text the PDF tool does not
+    rewrite itself: the library's docstrings ("its first, folded cell")."""
+
+    default_priority = 6
+    builders = ("latex",)
+
+    def run(self, **kwargs) -> None:
+        import pdf_text
+
+        skip = (nodes.literal, nodes.literal_block, nodes.math, nodes.math_block, nodes.raw,
+                nodes.comment)
+        for text in list(self.document.findall(nodes.Text)):
+            if any(isinstance(a, skip) for a in _ancestors(text)):
+                continue
+            new = pdf_text.paper_wording(str(text))
+            if new != str(text):
+                text.parent.replace(text, nodes.Text(new))
+
+
+def _ancestors(node):
+    parent = node.parent
+    while parent is not None:
+        yield parent
+        parent = parent.parent
+
+
 class _LibraryOutOfIndex(SphinxPostTransform):
     """The library's objects and modules stay out of the index of terms and symbols: they are
     listed, module by module, in the library reference appendix."""
@@ -217,4 +245,5 @@ def setup(app):
     app.add_post_transform(_BibliographyMark)
     app.add_post_transform(_BibliographyInPlace)
     app.add_post_transform(_LibraryOutOfIndex)
+    app.add_post_transform(_PaperWording)
     return {"parallel_read_safe": True, "parallel_write_safe": True, "version": "1"}

@@ -132,6 +132,7 @@ PAPER_WORDING: list[tuple[re.Pattern, str]] = [(re.compile(p), r) for p, r in [
     (r"[ \t]*\(folded[ \t\n]+(?:cells?|code)\)", ""),
     (r"\(folded[ \t\n]+(?:cells?|code)[;,][ \t\n]*", "("),
     (r"[ \t]*\(folded\)", ""),
+    (r"(\w),[ \t\n]+folded[ \t\n]+(cells?)\b", r"\1 \2"),
     (r"\b([Tt])he[ \t\n]+folded[ \t\n]+(?:cells?|code)(?:[ \t\n]+below)?\b", r"\1he notebook"),
     (r"\b[Aa][ \t\n]+folded[ \t\n]+cell\b", "the notebook"),
     (r"\b([Tt])he[ \t\n]+live[ \t\n]+panel\b", r"\1he notebook's live panel"),

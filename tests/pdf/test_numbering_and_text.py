@@ -10,9 +10,9 @@ from pathlib import Path
 import pdf_text
 import yaml
 from book_pages import book_structure
-from conftest import ROOT
 from docutils import nodes
 from numbering import book_numbers
+from printed_pdf import ROOT
 from sphinx import addnodes
 
 TOC = """
@@ -185,6 +185,8 @@ def test_paper_wording():
         "The live panel sets": "The notebook's live panel sets",
         "In the panel, set": "In the notebook's live panel, set",
         "the left panel of the figure": "the left panel of the figure",
+        "imports in its first, folded cell to show": "imports in its first cell to show",
+        "in its first (folded) cell instead": "in its first cell instead",
     }
     assert {k: pdf_text.paper_wording(k) for k in cases} == cases
     assert pdf_text.paper_caption("A sweep. Use the slider or the step buttons to stop. "
