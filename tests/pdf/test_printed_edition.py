@@ -13,7 +13,7 @@ import re
 import pdf_text
 import yaml
 from book_pages import page_title
-from conftest import ROOT, is_part
+from printed_pdf import ROOT, is_part
 
 #: A page with fewer words is blank, or a part's title page (running head and page number).
 MIN_WORDS_ON_A_PAGE = 40
