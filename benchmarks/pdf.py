@@ -9,6 +9,7 @@ sections kept).
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 import time
 from pathlib import Path
@@ -17,6 +18,36 @@ from tools.results import RESULTS, cpu, markers, write_section
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
+
+
+def chapter_pages(pdf: Path) -> dict[str, int]:
+    """{outline title: pages} of every chapter of the PDF (not the parts, not the index)."""
+    from pypdf import PdfReader
+
+    reader = PdfReader(str(pdf))
+    heads: list[tuple[str, int, bool]] = []
+    inside = False
+
+    def walk(items, level):
+        nonlocal inside
+        for item in items:
+            if isinstance(item, list):
+                walk(item, level + 1)
+                continue
+            page = reader.get_destination_page_number(item)
+            if level == 0:
+                inside = bool(re.match(r"^[IVXLC]+ ", item.title)) or item.title == "Appendices"
+                heads.append((item.title, page, not inside))
+            elif level == 1 and inside:
+                heads.append((item.title, page, item.title != "Index"))
+
+    walk(reader.outline, 0)
+    out = {}
+    for index, (title, page, is_chapter) in enumerate(heads):
+        if is_chapter:
+            end = heads[index + 1][1] if index + 1 < len(heads) else len(reader.pages)
+            out[title] = end - page
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -28,13 +59,15 @@ def main(argv: list[str] | None = None) -> int:
     start = time.perf_counter()
     summary = pdf_edition.build(ROOT / "_build" / "pdf", ROOT / "_build" / "pdf_src")
     seconds = time.perf_counter() - start
+    chapters = chapter_pages(Path(summary["pdf"]))
     begin, end = markers("pdf")
     section = "\n".join([
         begin,
         "## Printed edition (`make pdf`)",
         "",
         f"Machine: {cpu()}. `tools/pdf_edition.py`: transformed copy of the book "
-        "(animations as frame strips, no panels, no folded code, no solutions), then Jupyter "
+        "(animations as frame strips; no panels, figure-drawing code or solutions; answers at each "
+        "chapter's end; cross-references with numbers and pages; an index), then Jupyter "
         "Book's LaTeX builder with XeLaTeX.",
         "",
         "| what | value |",
@@ -43,6 +76,15 @@ def main(argv: list[str] | None = None) -> int:
         f"| PDF size | {summary['bytes'] / 1e6:.1f} MB |",
         f"| notebooks | {summary['notebooks']} |",
         f"| build time | {seconds:.0f} s |",
+        f"| chapters (front matter, chapters, appendices) | {len(chapters)} |",
+        f"| shortest chapter | {min(chapters.values())} pages |",
+        "",
+        "Pages of each chapter (from its first page to the next chapter, part or the index; a",
+        "chapter opens on a right-hand page, so a blank page may count):",
+        "",
+        "| chapter | pages |",
+        "| --- | --- |",
+        *[f"| {title} | {count} |" for title, count in chapters.items()],
         end,
     ])
     print(section)
