@@ -187,8 +187,8 @@ PREAMBLE = r"""
 \makeatletter
 \newcommand\wkdepth{-1}
 \pretocmd{\chapter}{\setcounter{secnumdepth}{\wkdepth}}{}{}
+\AtBeginDocument{\pagenumbering{roman}}% the title page is i, the contents follow
 \renewcommand{\sphinxtableofcontents}{%
-  \pagenumbering{roman}%
   \begingroup\parskip\z@skip\sphinxtableofcontentshook\tableofcontents\endgroup
   \if@openright\cleardoublepage\else\clearpage\fi}
 \newcommand\wkfrontmatter{\renewcommand\wkdepth{-1}}
