@@ -206,11 +206,14 @@ def test_notation_symbols_become_index_entries():
     text = ("| symbol | meaning | unit | introduced |\n| --- | --- | --- | --- |\n"
             "| $\\omega$ | the body's yaw rate, $\\dot\\theta$ | rad/s | {ref}`chapter-x` |\n"
             "| $E_d$, $E_b$ | UMBmark's two errors: wheels, track | 1 | the lab |\n"
+            "| $\\delta_m$, $\\delta_s$ | degrees of mobility, steerability | 1 | |\n"
             "| ICR | instantaneous centre of rotation: a point | m | |\n")
     out, at_labels = pdf_text.index_symbols(text)
     assert "| $\\omega$ {wklatex}`\\index{omega@$\\omega$ (the body's yaw rate)}` |" in out
     assert "\\index{E d@$E_d$ (UMBmark's two errors)}" in out
     assert "\\index{E b@$E_b$ (UMBmark's two errors)}" in out
+    # a list of meanings names all the cell's symbols: it is not cut at its comma
+    assert "\\index{delta s@$\\delta_s$ (degrees of mobility, steerability)}" in out
     assert "\\index{ICR@ICR (instantaneous centre of rotation)}" in out
     assert at_labels == {"chapter-x": ["\\index{omega@$\\omega$ (the body's yaw rate)}"]}
 
@@ -223,16 +226,18 @@ def test_terms_are_indexed_where_they_are_discussed():
     terms = pdf_text.load_terms([{"term": "odometry"}, {"term": "twist", "match": ["twists?"]},
                                  {"term": "pose"}])
     cells = [Cell("# Odometry\n\nThis is *odometry*; `odometry` in code."),
-             Cell("A twist, and $twist$ in math, and twists again."), Cell("A pose once.")]
+             Cell("A twist, and $twist$ in math, and twists again."),
+             Cell("A pose, then a pose again.")]
     assert pdf_text.index_terms(cells, terms) == 2
     assert cells[0].source.endswith(
         "This is *odometry{wklatex}`\\index{odometry|spxpagem}`*; `odometry` in code.")
     assert cells[1].source == ("A twist{wklatex}`\\index{twist}`, and $twist$ in math, and "
                                "twists again.")
-    assert cells[2].source == "A pose once."  # once, not emphasised: not discussed here
+    assert cells[2].source == "A pose, then a pose again."  # twice: not discussed here
     placed = {"odometry", "twist"}
-    assert pdf_text.index_rare_terms([cells], terms, placed) == 1  # named once: still indexed
-    assert cells[2].source == "A pose{wklatex}`\\index{pose}` once." and "pose" in placed
+    assert pdf_text.index_rare_terms([cells], terms, placed) == 1  # named, so still indexed
+    assert cells[2].source == "A pose{wklatex}`\\index{pose}`, then a pose again."
+    assert "pose" in placed
 
 
 def test_every_index_term_matches_the_book():
