@@ -211,7 +211,7 @@ def sort_key(latex: str) -> str:
     r"""An index sort key for a symbol: Greek letters by name, accents after the letter.
 
     >>> sort_key(r"\dot\varphi_i"), sort_key(r"\mathbf c"), sort_key(r"\Delta s")
-    ('varphi dot i', 'c', 'Delta s')
+    ('varphi i dot', 'c', 'Delta s')
     """
     key = re.sub(r"\\dot(?![A-Za-z])\s*\\?(\w+)|\\dot\{\\?(\w+)\}",
                  lambda m: (m.group(1) or m.group(2)) + " dot", latex)

@@ -4,9 +4,11 @@
 
 from __future__ import annotations
 
+import doctest
 import re
 from pathlib import Path
 
+import book_pages
 import pdf_text
 import yaml
 from book_pages import book_structure
@@ -249,3 +251,8 @@ def test_every_index_term_matches_the_book():
                      for p in [*ROOT.glob("notebooks/*/*.ipynb"), *ROOT.glob("book/*.md")])
     for term in pdf_text.load_terms(terms):
         assert any(form.search(text) for form in term.forms), term.entry
+
+
+def test_the_examples_in_the_tools_docstrings_hold():
+    for module in (pdf_text, book_pages):
+        assert doctest.testmod(module, optionflags=doctest.NORMALIZE_WHITESPACE).failed == 0
