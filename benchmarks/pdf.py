@@ -9,6 +9,8 @@ sections kept).
 from __future__ import annotations
 
 import argparse
+import datetime
+import os
 import re
 import sys
 import time
@@ -56,9 +58,11 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--no-write", action="store_true", help="print, do not write RESULTS.md")
     args = parser.parse_args(argv)
+    load_before = os.getloadavg()
     start = time.perf_counter()
     summary = pdf_edition.build(ROOT / "_build" / "pdf", ROOT / "_build" / "pdf_src")
     seconds = time.perf_counter() - start
+    load_after = os.getloadavg()
     chapters = chapter_pages(Path(summary["pdf"]))
     begin, end = markers("pdf")
     section = "\n".join([
@@ -69,6 +73,9 @@ def main(argv: list[str] | None = None) -> int:
         "(animations as frame strips; no panels, figure-drawing code or solutions; answers at each "
         "chapter's end; cross-references with numbers and pages; an index), then Jupyter "
         "Book's LaTeX builder with XeLaTeX.",
+        f"Run on {datetime.date.today().isoformat()}, load average "
+        f"{load_before[0]:.1f} before and {load_after[0]:.1f} after (other jobs share the CPU: "
+        "the build time varies with them).",
         "",
         "| what | value |",
         "| --- | --- |",
