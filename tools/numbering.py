@@ -26,15 +26,13 @@ after sphinx-external-toc's numbering styles, which would otherwise number the a
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 from docutils import nodes
 from sphinx import addnodes
 from sphinx.environment.collectors.toctree import TocTreeCollector
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from book_pages import book_structure
+from tools.book_pages import book_structure
 
 #: Levels that carry a number: chapter, section, subsection (LaTeX: secnumdepth 2).
 MAX_DEPTH = 3

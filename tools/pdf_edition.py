@@ -400,7 +400,7 @@ def copy_sources(src: Path) -> list[Path]:
     sphinx = config.setdefault("sphinx", {})
     # The web edition's extensions (offline assets, redirects, numbering) are not needed:
     # LaTeX numbers the printed book itself; tools/pdf_latex.py prints the references.
-    sphinx["local_extensions"] = {"pdf_latex": str(ROOT / "tools")}
+    sphinx["local_extensions"] = {"tools.pdf_latex": str(ROOT)}
     sphinx_config = sphinx.setdefault("config", {})
     sphinx_config["latex_elements"] = {
         "papersize": "a4paper",

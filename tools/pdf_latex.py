@@ -19,7 +19,6 @@
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 from docutils import nodes
@@ -28,8 +27,7 @@ from sphinx.transforms.post_transforms import SphinxPostTransform
 from sphinx.util import docname_join
 from sphinx.writers.latex import LaTeXTranslator
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from book_pages import book_structure
+from tools.book_pages import book_structure
 
 #: Levels that carry a number: chapter, section, subsection (secnumdepth 2).
 MAX_DEPTH = 3
@@ -204,7 +202,7 @@ class _PaperWording(SphinxPostTransform):
     builders = ("latex",)
 
     def run(self, **kwargs) -> None:
-        import pdf_text
+        from tools import pdf_text
 
         skip = (nodes.literal, nodes.literal_block, nodes.math, nodes.math_block, nodes.raw,
                 nodes.comment)

@@ -9,16 +9,15 @@ check (the tests' own defects are planted in copies).
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 
 import pytest
 
+from tests.pdf.printed_pdf import Printed, read_pdf
+from tools.book_pages import book_structure
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
-sys.path.insert(0, str(ROOT / "tools"))
-from book_pages import book_structure  # noqa: E402
-from printed_pdf import Printed, read_pdf  # noqa: E402
 
 
 def pytest_ignore_collect(collection_path, config):

@@ -8,14 +8,14 @@ import doctest
 import re
 from pathlib import Path
 
-import book_pages
-import pdf_text
 import yaml
-from book_pages import book_structure
 from docutils import nodes
-from numbering import book_numbers
-from printed_pdf import ROOT
 from sphinx import addnodes
+
+from tests.pdf.printed_pdf import ROOT
+from tools import book_pages, pdf_text
+from tools.book_pages import book_structure
+from tools.numbering import book_numbers
 
 TOC = """
 format: jb-book

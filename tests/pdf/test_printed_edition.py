@@ -10,10 +10,11 @@ from __future__ import annotations
 import json
 import re
 
-import pdf_text
 import yaml
-from book_pages import page_title
-from printed_pdf import ROOT, is_part
+
+from tests.pdf.printed_pdf import ROOT, is_part
+from tools import pdf_text
+from tools.book_pages import page_title
 
 #: A page with fewer words is blank, or a part's title page (running head and page number).
 MIN_WORDS_ON_A_PAGE = 40
