@@ -186,7 +186,7 @@ def section(page_rows, panel_rows, byte_rows, build, moves) -> str:
              f"Machine: {cpu()}; Debian's chromium, headless. Date: {_dt.date.today()}. Load "
              f"average (1, 5, 15 min) at the end: {load[0]:.1f}, {load[1]:.1f}, {load[2]:.1f}. "
              "Produced by `python -m benchmarks.live` (method in its docstring).", "",
-             "### Kernel ready after the click (per chapter)", "",
+             "### Kernel ready after *Make this page live* (per chapter)", "",
              "| chapter | pages | kernel ready, median (s) | page ready, median (s) |",
              "| --- | --- | --- | --- |"]
     chapters: dict[str, list[dict]] = {}
