@@ -15,6 +15,7 @@ ValueError: wheel_radius must be a finite number > 0, got -0.1
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Sequence
 from typing import Any
 
@@ -24,6 +25,7 @@ import numpy as np
 _SMALLEST_NORMAL = float(np.finfo(float).tiny)
 
 __all__ = [
+    "InputTypeError",
     "choice",
     "finite",
     "finite_array",
@@ -32,19 +34,61 @@ __all__ = [
     "nonnegative",
     "pose",
     "positive",
+    "real",
     "shaped",
     "twist",
 ]
 
 
-def finite(name: str, value) -> float:
-    """``value`` as a float; ``ValueError`` unless it is a finite real number."""
-    if isinstance(value, bool):
+class InputTypeError(TypeError, ValueError):
+    """A value of the wrong type: a string, ``None``, a boolean or an object where a number is
+    meant. A ``TypeError``, and a ``ValueError`` too, so that code that catches the library's
+    ``ValueError`` for bad input catches this as well.
+
+    >>> finite("speed", "1")
+    Traceback (most recent call last):
+    ...
+    wheelkin._validate.InputTypeError: speed must be a real number, got the str '1'
+    """
+
+
+def _type_error(name: str, value: Any, what: str = "a real number") -> InputTypeError:
+    return InputTypeError(f"{name} must be {what}, got the {type(value).__name__} {value!r}")
+
+
+def real(name: str, value: Any) -> float:
+    """The cheap check of a loop's per-call path: ``value`` as a float, finite.
+
+    A Python float passes with one comparison (``x - x == 0`` is false for NaN and the
+    infinities); an int or a NumPy real scalar is converted; anything else (a string, even
+    ``"1"``, a boolean, ``None``) is an :class:`InputTypeError`.
+
+    >>> real("left", 2)
+    2.0
+    >>> real("left", float("inf"))
+    Traceback (most recent call last):
+    ...
+    ValueError: left must be a finite number, got inf
+    """
+    if type(value) is float:
+        if value - value == 0.0:
+            return value
         raise ValueError(f"{name} must be a finite number, got {value!r}")
-    try:
+    return finite(name, value)
+
+
+def finite(name: str, value: Any) -> float:
+    """``value`` as a float; ``ValueError`` unless it is a finite real number, and an
+    :class:`InputTypeError` (a ``TypeError``) when it is not a number at all: a string (even
+    a numeric one: ``"1"`` is not coerced), a boolean, ``None``."""
+    if isinstance(value, bool | np.bool_):
+        raise _type_error(name, value, "a finite number (not a boolean)")
+    if isinstance(value, numbers.Real):
         x = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a finite number, got {value!r}") from None
+    elif isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iuf":
+        x = float(value)
+    else:
+        raise _type_error(name, value)
     if not math.isfinite(x):
         raise ValueError(f"{name} must be a finite number, got {value!r}")
     return x
@@ -54,6 +98,8 @@ def positive(name: str, value) -> float:
     """``value`` as a float; ``ValueError`` unless finite and > 0."""
     try:
         x = finite(name, value)
+    except InputTypeError:
+        raise
     except ValueError:
         raise ValueError(f"{name} must be a finite number > 0, got {value!r}") from None
     if x <= 0:
@@ -68,6 +114,8 @@ def nonnegative(name: str, value) -> float:
     """``value`` as a float; ``ValueError`` unless finite and >= 0."""
     try:
         x = finite(name, value)
+    except InputTypeError:
+        raise
     except ValueError:
         raise ValueError(f"{name} must be a finite number >= 0, got {value!r}") from None
     if x < 0:
@@ -95,15 +143,28 @@ def _is_boolean(value) -> bool:
     return False
 
 
-def finite_array(name: str, value, *, allow_inf: bool = False) -> np.ndarray:
-    """``value`` as a float array; ``ValueError`` if it is not numeric (booleans are not
-    numbers here: a flag is never a length) or holds NaN (or inf)."""
+def finite_array(name: str, value: Any, *, allow_inf: bool = False) -> np.ndarray:
+    """``value`` as a float array; ``ValueError`` if it holds NaN (or inf) or is ragged, and
+    :class:`InputTypeError` if it is not numeric: booleans are not numbers here (a flag is
+    never a length), and strings are refused, not coerced (``["1", "2"]`` is not a length)."""
     if _is_boolean(value):
-        raise ValueError(f"{name} must be numeric (not a boolean), got {value!r}")
+        raise _type_error(name, value, "numeric (not a boolean)")
+    if isinstance(value, str | bytes):
+        raise _type_error(name, value, "numeric")
     try:
-        arr = np.asarray(value, dtype=float)
+        raw = np.asarray(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be numeric, got {value!r}") from None
+    kind = raw.dtype.kind
+    if kind in "USVMm" or (kind == "O" and any(
+            isinstance(v, str | bytes) or v is None for v in raw.flat)):
+        raise _type_error(name, value, "numeric")
+    if kind in "c":
+        raise _type_error(name, value, "real (not complex)")
+    try:
+        arr = raw.astype(float, copy=False)
+    except (TypeError, ValueError):
+        raise _type_error(name, value, "numeric") from None
     bad = np.isnan(arr) if allow_inf else ~np.isfinite(arr)
     if np.any(bad):
         what = "NaN" if allow_inf else "NaN or infinity"

@@ -89,10 +89,12 @@ def test_pose_and_twist_validate_freeze_and_unpack(cls):
     assert obj._replace(**{names[2]: 4.0}) == cls(1, 2, 4)
     assert pickle.loads(pickle.dumps(obj)) == obj
     for i, name in enumerate(names):
-        for bad in (math.nan, math.inf, "x", None, True):
+        for bad in (math.nan, math.inf, "x", "1", None, True):
             args = [0.0, 0.0, 0.0]
             args[i] = bad
-            with pytest.raises(ValueError, match=rf"^{name} must be a finite number"):
+            # not a number at all (a string, even "1", None, a flag) is a TypeError
+            error = ValueError if isinstance(bad, float) else TypeError
+            with pytest.raises(error, match=rf"^{name} must be a (finite|real) number"):
                 cls(*args)
     with pytest.raises(ValueError, match="must have shape"):
         cls.from_array([1.0, 2.0])
