@@ -60,7 +60,7 @@ array([ 96.59, 100.  ,  96.59,  62.52,  49.73,  62.52])
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal, NamedTuple, cast
 
 import numpy as np
@@ -76,6 +76,8 @@ __all__ = [
     "HARD_STOP",
     "OSR_GEOMETRY",
     "OSR_GEOMETRY_SI",
+    "OSR_PARAMS_GEOMETRY",
+    "OSR_PARAMS_WHEEL_RADIUS",
     "SOFTWARE_MIN_RADIUS",
     "STRAIGHT_THRESHOLD",
     "WHEEL_NAMES",
@@ -132,7 +134,9 @@ class RoverGeometry:
     d4 : float
         Lateral distance from the body centre to the two middle wheels (> 0).
     unit : {"in", "m"}
-        The unit of d1..d4: inches (the document's, default) or metres. The SI functions
+        The unit of d1..d4, keyword-only and required: inches (the document's) or metres
+        (there is no default: a geometry in metres read as inches gave a rover 0.04 times
+        its size without an error). The SI functions
         (:func:`wheel_commands`, :func:`wheelkin.unified.rover_wheels`) convert with
         :meth:`in_unit`, so a geometry in either unit gives the same rover; the document's
         functions (:func:`corner_angles`, :func:`wheel_speeds`, ...) work in the geometry's
@@ -140,11 +144,11 @@ class RoverGeometry:
 
     Examples
     --------
-    >>> RoverGeometry(7.254, 10.5, 10.5, 10.073) == OSR_GEOMETRY
+    >>> RoverGeometry(7.254, 10.5, 10.5, 10.073, unit="in") == OSR_GEOMETRY
     True
     >>> round(OSR_GEOMETRY.in_unit("m").d1, 6), OSR_GEOMETRY_SI.unit
     (0.184252, 'm')
-    >>> RoverGeometry(7.0, -1.0, 10.0, 10.0)
+    >>> RoverGeometry(7.0, -1.0, 10.0, 10.0, unit="in")
     Traceback (most recent call last):
     ...
     ValueError: d2 must be a finite number > 0, got -1.0
@@ -154,7 +158,7 @@ class RoverGeometry:
     d2: float
     d3: float
     d4: float
-    unit: Literal["in", "m"] = "in"
+    unit: Literal["in", "m"] = field(kw_only=True)
 
     def __post_init__(self) -> None:
         for name in ("d1", "d2", "d3", "d4"):
@@ -167,14 +171,21 @@ class RoverGeometry:
         if unit == self.unit:
             return self
         k = INCH if unit == "m" else 1.0 / INCH
-        return RoverGeometry(self.d1 * k, self.d2 * k, self.d3 * k, self.d4 * k, unit)
+        return RoverGeometry(self.d1 * k, self.d2 * k, self.d3 * k, self.d4 * k, unit=unit)
 
 
 #: The Open Source Rover's base model (inches), from the document's equation 5.
-OSR_GEOMETRY = RoverGeometry(d1=7.254, d2=10.5, d3=10.5, d4=10.073)
+OSR_GEOMETRY = RoverGeometry(d1=7.254, d2=10.5, d3=10.5, d4=10.073, unit="in")
 #: The same rover in metres, for the SI functions (:func:`wheel_commands`).
 OSR_GEOMETRY_SI = RoverGeometry(d1=7.254 * INCH, d2=10.5 * INCH, d3=10.5 * INCH,
                                 d4=10.073 * INCH, unit="m")
+#: The OSR as its current software configures it (metres): ``rover_dimensions`` of
+#: ``ROS/osr_bringup/config/osr_params.yaml`` in nasa-jpl/osr-rover-code (commit 40f88e78),
+#: d1 = 0.184, d2 = d3 = 0.267, d4 = 0.2556 m: the document's inches rounded to the millimetre
+#: (within 0.6 mm of :data:`OSR_GEOMETRY_SI`).
+OSR_PARAMS_GEOMETRY = RoverGeometry(d1=0.184, d2=0.267, d3=0.267, d4=0.2556, unit="m")
+#: The OSR's wheel radius in the same file, m.
+OSR_PARAMS_WHEEL_RADIUS = 0.075
 
 
 def _geometry(geometry) -> RoverGeometry:
@@ -249,7 +260,7 @@ def outer_middle_is_fastest_above(geometry: RoverGeometry = OSR_GEOMETRY) -> flo
     --------
     >>> round(outer_middle_is_fastest_above(), 3)
     10.892
-    >>> outer_middle_is_fastest_above(RoverGeometry(7.254, 10.5, 10.5, 7.0))
+    >>> outer_middle_is_fastest_above(RoverGeometry(7.254, 10.5, 10.5, 7.0, unit="in"))
     inf
     """
     g = _geometry(geometry)

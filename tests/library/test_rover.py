@@ -128,7 +128,7 @@ def test_sympy_derivation_agrees():
     f = sp.lambdify((r, X, d1, d2, d3, d4), speeds_sym)
     rng = np.random.default_rng(3)
     for _ in range(50):
-        g = RoverGeometry(*rng.uniform([3, 5, 5, 8], [9, 15, 15, 14]))
+        g = RoverGeometry(*rng.uniform([3, 5, 5, 8], [9, 15, 15, 14]), unit="in")
         rr = rng.uniform(min_turning_radius(g), 240)
         x = rng.uniform(1, 100)
         want = np.array(f(rr, x, g.d1, g.d2, g.d3, g.d4), dtype=float)
@@ -189,7 +189,7 @@ def test_inner_corners_hit_the_stop_at_r_min():
 
 
 def test_min_radius_uses_the_longer_corner():
-    g = RoverGeometry(d1=7.0, d2=14.0, d3=10.0, d4=10.0)
+    g = RoverGeometry(d1=7.0, d2=14.0, d3=10.0, d4=10.0, unit="in")
     assert min_turning_radius(g) == pytest.approx(7.0 + 14.0)  # back corners bind
     a = corner_angles(min_turning_radius(g), g)
     assert abs(a[3]) == pytest.approx(math.pi / 4)  # inner back corner (RB) at the stop
@@ -203,7 +203,7 @@ def test_outer_middle_fastest_boundary():
     r = np.linspace(min_turning_radius(), 249, 500)
     assert np.all(np.max(np.abs(wheel_speeds(r, 1.0)), axis=-1) <= 1 + 1e-12)
     # A long rover: a corner wheel outruns the outer middle wheel below the boundary.
-    long = RoverGeometry(d1=7.254, d2=25.0, d3=25.0, d4=10.073)
+    long = RoverGeometry(d1=7.254, d2=25.0, d3=25.0, d4=10.073, unit="in")
     boundary = outer_middle_is_fastest_above(long)
     hand = 0.5 * (25.0**2 / (10.073 - 7.254) - 10.073 - 7.254)
     assert boundary == pytest.approx(hand)
@@ -219,7 +219,7 @@ def test_outer_middle_fastest_boundary():
 def test_inner_middle_wheel_reverses_inside_d4():
     # A rover whose middle wheels stick out beyond the turning centre: the inner middle
     # wheel turns backwards (its contact point moves backwards).
-    g = RoverGeometry(d1=4.0, d2=5.0, d3=5.0, d4=15.0)
+    g = RoverGeometry(d1=4.0, d2=5.0, d3=5.0, d4=15.0, unit="in")
     r = min_turning_radius(g)  # 9 < d4
     _, vel = rigid_body(r, 10.0, wheel_positions_of(g), g.d4)
     got = wheel_speeds(r, 10.0, g)
@@ -339,9 +339,9 @@ def test_body_twist_is_rep103():
     (lambda: command_to_radius(10, mapping="log"), "mapping"),
     (lambda: radius_to_command(10.0), "radius"),
     (lambda: radius_to_command(300.0), "radius"),
-    (lambda: RoverGeometry(0.0, 1, 1, 1), "d1"),
-    (lambda: RoverGeometry(1, 1, float("nan"), 1), "d3"),
-    (lambda: RoverGeometry(1, 1, 1, np.inf), "d4"),
+    (lambda: RoverGeometry(0.0, 1, 1, 1, unit="in"), "d1"),
+    (lambda: RoverGeometry(1, 1, float("nan"), 1, unit="in"), "d3"),
+    (lambda: RoverGeometry(1, 1, 1, np.inf, unit="in"), "d4"),
     (lambda: sandbox_commands(30.0, 1.0, 0.0), "wheel_radius_in"),
 ])
 def test_bad_inputs_name_the_parameter(call, name):

@@ -170,7 +170,7 @@ def _radius_in(geometry: RoverGeometry):
 @given(data=st.data(), speed=st.floats(-30.0, 30.0), wheel_radius=st.floats(0.02, 0.2),
        dims=st.tuples(st.floats(3, 15), st.floats(3, 15), st.floats(3, 15), st.floats(3, 15)))
 def test_rover_rates_are_the_rover_chapter(data, speed, wheel_radius, dims):
-    g = RoverGeometry(*dims)
+    g = RoverGeometry(*dims, unit="in")
     radius = data.draw(_radius_in(g))
     wheels = rover_wheels(g, wheel_radius, turning_radius=-radius * INCH)
     twist = rover.document_twist(radius, speed, g)

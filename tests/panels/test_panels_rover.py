@@ -25,7 +25,7 @@ def test_panel_never_raises_and_draws_the_model():
             heights = [bar.get_height() for bar in view.bars]
             np.testing.assert_allclose(heights, wheel_speeds(command_to_radius(command), speed))
         # A model error is shown in the figure, never raised.
-        view.geometry = RoverGeometry(7.254, 200.0, 200.0, 10.073)  # r_min far above 20 in
+        view.geometry = RoverGeometry(7.254, 200.0, 200.0, 10.073, unit="in")  # r_min far above 20 in
         view.update(100, 50)
         assert view.message.get_visible() and "radius" in view.message.get_text()
     finally:

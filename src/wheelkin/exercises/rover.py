@@ -12,7 +12,7 @@ at the tightest turn.
 >>> d = longest_corner_offset(7.254, 10.073, 45.0)
 >>> round(d, 2)
 12.7
->>> g = RoverGeometry(7.254, d, d, 10.073)
+>>> g = RoverGeometry(7.254, d, d, 10.073, unit="in")
 >>> abs(outer_middle_is_fastest_above(g) - min_turning_radius(g)) < 1e-9
 True
 
@@ -100,11 +100,11 @@ def corner_angles_general(R: float, d1: float, d2: float, d3: float) -> NDArray[
     ahead of the middle axle, d1 to each side; ``R`` the signed turning radius of the body
     centre in inches, > 0 turns left. The library's corner_angles uses the document's sign
     (delta_OSR = -delta) and radius (r_OSR = -R)."""
-    return -corner_angles(-R, RoverGeometry(d1, d2, d3, d1), straight_threshold=math.inf)
+    return -corner_angles(-R, RoverGeometry(d1, d2, d3, d1, unit="in"), straight_threshold=math.inf)
 
 
 def _document_sign(R, d1, d2, d3):
-    return corner_angles(R, RoverGeometry(d1, d2, d3, d1), straight_threshold=math.inf)
+    return corner_angles(R, RoverGeometry(d1, d2, d3, d1, unit="in"), straight_threshold=math.inf)
 
 
 def _swapped_d2_d3(radius, d1, d2, d3):
@@ -151,7 +151,8 @@ Exercise(
 def tightest_turn(d1: float, d2: float, d3: float, max_corner_angle_deg: float) -> float:
     """The smallest turning radius (in) of the body centre that keeps every corner within
     ``max_corner_angle_deg`` degrees of straight."""
-    return min_turning_radius(RoverGeometry(d1, d2, d3, d1), math.radians(max_corner_angle_deg))
+    return min_turning_radius(RoverGeometry(d1, d2, d3, d1, unit="in"),
+                              math.radians(max_corner_angle_deg))
 
 
 def _front_only(d1, d2, d3, max_corner_angle_deg):
@@ -195,12 +196,12 @@ def normalised_wheel_speeds(radius: float, speed: float, d1: float, d2: float, d
                             d4: float) -> NDArray[np.float64]:
     """The six wheel speeds (wheels LF, LM, LB, RF, RM, RB) scaled so that the fastest wheel
     gets exactly ``speed`` (no motor is asked for more than the command)."""
-    v = wheel_speeds(radius, 1.0, RoverGeometry(d1, d2, d3, d4))
+    v = wheel_speeds(radius, 1.0, RoverGeometry(d1, d2, d3, d4, unit="in"))
     return speed * v / np.max(np.abs(v))
 
 
 def _document_rule(radius, speed, d1, d2, d3, d4):
-    return wheel_speeds(radius, speed, RoverGeometry(d1, d2, d3, d4))
+    return wheel_speeds(radius, speed, RoverGeometry(d1, d2, d3, d4, unit="in"))
 
 
 Exercise(
