@@ -25,7 +25,7 @@ __all__ = ["FORMULA_MODULES", "LAYERS", "SUPPORT_MODULES", "TYPED_MODULES",
 FORMULA_MODULES: tuple[str, ...] = (
     "units", "frames", "sources", "rover", "mecanum", "diffdrive", "odometry",
     "odometry_uncertainty", "motion_models", "odometry_fusion", "waypoints", "follower",
-    "unified", "carlike", "nonholonomic", "control",
+    "unified", "carlike", "nonholonomic", "control", "kinematics", "odometers",
 )
 
 #: The private modules the formula modules are built on (numpy only, type-checked too).

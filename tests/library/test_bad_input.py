@@ -103,6 +103,9 @@ def _good_values() -> dict:
         "previous_pose": (0.0, 0.0, 0.0), "odometry": (1.0, 0.5, 0.2),
         "previous_odometry": (0.0, 0.0, 0.0), "alphas": [0.01, 0.02, 0.03, 0.01], "n": 5,
         "error": [0.01, -0.02, 0.003],
+
+        # kinematics and odometers (the kinematics object is filled in by _resolve)
+        "kinematics": None,
     }
 
 
@@ -124,6 +127,8 @@ def _public_callables():
                 # Twist, which validate what they are given, are swept)
             if isinstance(obj, type) and typing.Protocol in obj.__mro__:
                 continue  # a Protocol describes, it is not called
+            if inspect.isabstract(obj):
+                continue  # an interface (VehicleKinematics, Odometry): its classes are swept
             if getattr(obj, "__module__", "") != mod.__name__:
                 continue  # a re-export: swept where it is defined
             if f"{mod_name}.{name}" in SANDBOX_BOUND:
@@ -255,8 +260,25 @@ def _resolve(qualname: str, kwargs: dict) -> dict:
         kwargs["wheel"] = unified.diff_drive_wheels(0.3, 0.05)[0]
     if qualname == "nonholonomic.pfaffian_matrix":
         kwargs["wheels"] = unified.diff_drive_wheels(0.3, 0.05)
+    if qualname == "kinematics.MecanumKinematics":
+        kwargs["geometry"] = mecanum.EXAMPLE_GEOMETRY
+    if qualname == "kinematics.RoverKinematics":
+        kwargs["geometry"] = rover.OSR_GEOMETRY_SI
+    if qualname.startswith("odometers."):
+        kwargs["kinematics"] = _kinematics_for(qualname)
     del mecanum, odometry
     return kwargs
+
+
+def _kinematics_for(qualname: str):
+    """A kinematics object of the vehicle an odometry class ``qualname`` needs."""
+    from wheelkin import kinematics, mecanum
+
+    if "Mecanum" in qualname:
+        return kinematics.MecanumKinematics(mecanum.EXAMPLE_GEOMETRY)
+    if "Ackermann" in qualname:
+        return kinematics.AckermannKinematics(wheelbase=2.5, track_width=1.5)
+    return kinematics.DiffDriveKinematics(track_width=0.3)
 
 
 def _calls():
