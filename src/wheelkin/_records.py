@@ -147,6 +147,12 @@ def _unpack_out(columns, is_record: bool, cls):
     return np.stack(columns, axis=-1)
 
 
+def _trusted(cls, x: float, y: float, z: float):
+    """A Pose or Twist of three floats the caller has already checked to be finite (the loop
+    objects' per-call path: skips the constructor's re-check)."""
+    return tuple.__new__(cls, (x, y, z))
+
+
 def _no_negative_zero(a):
     return a + 0.0
 

@@ -40,6 +40,7 @@ from typing import ClassVar, Generic, NamedTuple, TypeVar
 import numpy as np
 
 from wheelkin import _validate as V
+from wheelkin._records import _trusted
 from wheelkin._validate import InputTypeError
 from wheelkin.frames import Twist
 from wheelkin.mecanum import MecanumGeometry
@@ -120,12 +121,10 @@ def _twist(twist: Twist | tuple[float, float, float]) -> tuple[float, float, flo
 def _wheels(cls: type[WheelsT], wheels: WheelsT | tuple[float, ...]) -> WheelsT:
     """Wheel state of type ``cls``, each field a finite float (cheap when it already is)."""
     if type(wheels) is cls:
-        ok = True
         for value in wheels:
             if type(value) is not float or value - value != 0.0:
-                ok = False
                 break
-        if ok:
+        else:
             return wheels
     if not isinstance(wheels, tuple | list) or len(wheels) != len(cls._fields):
         raise InputTypeError(f"wheels must be a {cls.__name__} {cls._fields}, got the "
@@ -234,13 +233,19 @@ class DiffDriveKinematics(VehicleKinematics[DiffDriveWheelSpeeds]):
         v, w = 0.5 * left + 0.5 * right, (right - left) / self.track_width
         if _overflow(v, w):
             raise ValueError(f"wheels is out of range: the twist overflows, got {wheels!r}")
-        return Twist(v, 0.0, w)
+        return _trusted(Twist, v, 0.0, w)
 
     def desaturate(self, wheels: DiffDriveWheelSpeeds,
                    max_speed: float) -> DiffDriveWheelSpeeds:
         """Both speeds scaled by one factor so that neither exceeds ``max_speed``."""
-        w = _wheels(DiffDriveWheelSpeeds, wheels)
-        return DiffDriveWheelSpeeds(*_scale(w, self._max_speed(max_speed)))
+        if type(max_speed) is not float or not 0.0 < max_speed < math.inf:
+            max_speed = self._max_speed(max_speed)
+        left, right = _wheels(DiffDriveWheelSpeeds, wheels)
+        biggest = abs(left) if abs(left) > abs(right) else abs(right)
+        if biggest <= max_speed:
+            return DiffDriveWheelSpeeds(left, right)
+        k = max_speed / biggest
+        return tuple.__new__(DiffDriveWheelSpeeds, (left * k, right * k))
 
 
 class MecanumKinematics(VehicleKinematics[MecanumWheelSpeeds]):
@@ -311,12 +316,26 @@ class MecanumKinematics(VehicleKinematics[MecanumWheelSpeeds]):
         w = 0.25 * (-fl + fr - rl + rr) / self._k
         if _overflow(vx, vy, w):
             raise ValueError(f"wheels is out of range: the twist overflows, got {wheels!r}")
-        return Twist(vx, vy, w)
+        return _trusted(Twist, vx, vy, w)
 
     def desaturate(self, wheels: MecanumWheelSpeeds, max_speed: float) -> MecanumWheelSpeeds:
         """The four speeds scaled by one factor so that none exceeds ``max_speed``."""
-        w = _wheels(MecanumWheelSpeeds, wheels)
-        return MecanumWheelSpeeds(*_scale(w, self._max_speed(max_speed)))
+        if type(max_speed) is not float or not 0.0 < max_speed < math.inf:
+            max_speed = self._max_speed(max_speed)
+        if type(wheels) is not MecanumWheelSpeeds:
+            wheels = _wheels(MecanumWheelSpeeds, wheels)
+        fl, fr, rl, rr = wheels
+        if not (type(fl) is float and type(fr) is float and type(rl) is float
+                and type(rr) is float) or fl - fl + fr - fr + rl - rl + rr - rr != 0.0:
+            fl, fr, rl, rr = _wheels(MecanumWheelSpeeds, tuple(wheels))
+        a, b, c, d = abs(fl), abs(fr), abs(rl), abs(rr)
+        biggest = a if a > b else b
+        biggest = c if c > biggest else biggest
+        biggest = d if d > biggest else biggest
+        if biggest <= max_speed:
+            return MecanumWheelSpeeds(fl, fr, rl, rr)
+        k = max_speed / biggest
+        return tuple.__new__(MecanumWheelSpeeds, (fl * k, fr * k, rl * k, rr * k))
 
 
 class AckermannKinematics(VehicleKinematics[AckermannWheels]):
@@ -345,10 +364,10 @@ class AckermannKinematics(VehicleKinematics[AckermannWheels]):
     0.5317 0.4101 4.25
     >>> car.forward(wheels)
     Twist(vx=5.0, vy=0.0, omega=1.0)
-    >>> car.inverse(Twist(5.0, 0.0, 3.0))
+    >>> car.inverse(Twist(5.0, 0.0, 3.0))  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: omega: the turn needs a steering angle of 1.22 rad, beyond max_steering_angle 0.6 rad (R = v/omega = 1.667 m)
+    ValueError: omega: the turn needs a steering angle of 1.22 rad, beyond ...
     """
 
     wheel_names: ClassVar[tuple[str, ...]] = ("rear_left", "rear_right")
@@ -409,7 +428,7 @@ class AckermannKinematics(VehicleKinematics[AckermannWheels]):
         w = v * kappa
         if _overflow(v, w):
             raise ValueError(f"wheels is out of range: the twist overflows, got {wheels!r}")
-        return Twist(v, 0.0, w)
+        return _trusted(Twist, v, 0.0, w)
 
     def desaturate(self, wheels: AckermannWheels, max_speed: float) -> AckermannWheels:
         """The rear speeds scaled by one factor so that neither exceeds ``max_speed``; the
@@ -521,7 +540,7 @@ class RoverKinematics(VehicleKinematics[RoverWheels]):
         out = [sum(p * q for p, q in zip(row, b, strict=True)) + 0.0 for row in self._pinv]
         if _overflow(*out):
             raise ValueError(f"wheels is out of range: the twist overflows, got {wheels!r}")
-        return Twist(*out)
+        return _trusted(Twist, out[0], out[1], out[2])
 
     def desaturate(self, wheels: RoverWheels, max_speed: float) -> RoverWheels:
         """The six speeds scaled by one factor so that none exceeds ``max_speed``; the corner

@@ -41,6 +41,7 @@ from numpy.typing import NDArray
 
 from wheelkin import _validate as V
 from wheelkin._kernels import SERIES_THRESHOLD
+from wheelkin._records import _trusted
 from wheelkin._validate import InputTypeError
 from wheelkin.frames import Pose, Twist
 from wheelkin.kinematics import AckermannKinematics, DiffDriveKinematics, MecanumKinematics
@@ -55,17 +56,14 @@ __all__ = [
 _ORIGIN = Pose(0.0, 0.0, 0.0)
 
 
-def _arc(phi: float) -> tuple[float, float, float, float]:
-    r""":math:`a = \sin\varphi/\varphi`, :math:`b = (1-\cos\varphi)/\varphi` and their
-    derivatives, on floats (the series of :mod:`wheelkin._kernels` below its threshold)."""
-    if abs(phi) < SERIES_THRESHOLD:
+def _arc_derivatives(phi: float, a: float, b: float) -> tuple[float, float]:
+    r""":math:`a'(\varphi)` and :math:`b'(\varphi)` of the arc factors
+    :math:`a = \sin\varphi/\varphi`, :math:`b = (1-\cos\varphi)/\varphi`, on floats (their
+    series below the arc kernel's threshold)."""
+    if -SERIES_THRESHOLD < phi < SERIES_THRESHOLD:
         p2 = phi * phi
-        return (1.0 - p2 / 6.0 + p2 * p2 / 120.0, phi * (0.5 - p2 / 24.0 + p2 * p2 / 720.0),
-                phi * (-1.0 / 3.0 + p2 / 30.0), 0.5 - p2 / 8.0 + p2 * p2 / 144.0)
-    s = math.sin(0.5 * phi)
-    a = math.sin(phi) / phi
-    b = 2.0 * s * s / phi
-    return a, b, (math.cos(phi) - a) / phi, a - b / phi
+        return phi * (-1.0 / 3.0 + p2 / 30.0), 0.5 - p2 / 8.0 + p2 * p2 / 144.0
+    return (math.cos(phi) - a) / phi, a - b / phi
 
 
 class Odometry(ABC):
@@ -162,48 +160,57 @@ class Odometry(ABC):
                              f"got {distances!r}")
         return tuple(distances)
 
-    def _increments(self, values: tuple[float, ...]) -> tuple[float, ...]:
-        scale = self._scale
-        now = tuple(V.real(name, v) * scale for name, v in zip(self._names, values, strict=True))
-        last = self._last
-        self._last = now
-        return tuple(a - b for a, b in zip(now, last, strict=True))
+    def _reading(self, name: str, value: float) -> float:
+        """One measurement in metres (the cheap check; counts times the scale)."""
+        if type(value) is not float or value - value != 0.0:
+            value = V.real(name, value)
+        return value * self._scale
 
     def _advance(self, a: float, b: float, phi: float, heading: float | None,
                  inputs: Sequence[tuple[float, float, float]],
-                 variances: Sequence[float]) -> Pose:
+                 increments: Sequence[float]) -> Pose:
         """Move the pose by the body motion ``(a, b, phi)`` along the arc; ``inputs`` are the
-        columns of d(a, b, phi)/d(measurements), ``variances`` the measurements'."""
+        columns of d(a, b, phi)/d(measurements), ``increments`` the measurements' changes."""
         theta = self._theta
-        if heading is not None:
+        if heading is None:
+            new_theta = theta + phi
+        else:
             if self._offset is None:
                 raise ValueError("heading: give the gyro's heading at construction or reset "
                                  "too (the offset between the gyro and the pose is fixed "
                                  "there)")
-            new_theta = V.real("heading", heading) + self._offset
+            if type(heading) is not float or heading - heading != 0.0:
+                heading = V.real("heading", heading)
+            new_theta = heading + self._offset
             phi = new_theta - theta
+        if -SERIES_THRESHOLD < phi < SERIES_THRESHOLD:  # the arc kernel's two factors
+            p2 = phi * phi
+            ca = 1.0 - p2 / 6.0 + p2 * p2 / 120.0
+            cb = phi * (0.5 - p2 / 24.0 + p2 * p2 / 720.0)
         else:
-            new_theta = theta + phi
-        ca, cb, da, db = _arc(phi)
+            half = math.sin(0.5 * phi)
+            ca = math.sin(phi) / phi
+            cb = 2.0 * half * half / phi
         bx, by = ca * a - cb * b, cb * a + ca * b  # body-frame displacement
         c, s = math.cos(theta), math.sin(theta)
         dx, dy = c * bx - s * by, s * bx + c * by
         x, y = self._x + dx, self._y + dy
-        if x - x != 0.0 or y - y != 0.0 or new_theta - new_theta != 0.0:
+        if x - x != 0.0 or y - y != 0.0 or new_theta - new_theta != 0.0 \
+                or bx - bx != 0.0 or by - by != 0.0:
             raise ValueError(f"{', '.join(self._names)} are out of range: the pose overflows")
         self._x, self._y, self._theta = x, y, new_theta
-        self._twist = Twist(bx, by, phi)
+        self._twist = _trusted(Twist, bx, by, phi)
         if self._track:
-            self._propagate(dx, dy, c, s, a, b, phi, ca, cb, da, db, inputs, variances)
-        return Pose(x, y, new_theta)
+            self._propagate(dx, dy, c, s, a, b, phi, ca, cb, inputs, increments)
+        return _trusted(Pose, x, y, new_theta)
 
     def _propagate(self, dx: float, dy: float, c: float, s: float, a: float, b: float,
-                   phi: float, ca: float, cb: float, da: float, db: float,
+                   phi: float, ca: float, cb: float,
                    inputs: Sequence[tuple[float, float, float]],
-                   variances: Sequence[float]) -> None:
+                   increments: Sequence[float]) -> None:
         r""":math:`\Sigma' = F_p \Sigma F_p^T + \sum_k q_k g_k g_k^T` with
-        :math:`F_p = I + (-\Delta y, \Delta x, 0)\,e_\theta^T` and :math:`g_k` the arc's
-        Jacobian times the k-th measurement's column."""
+        :math:`F_p = I + (-\Delta y, \Delta x, 0)\,e_\theta^T`, :math:`q_k = k_k|\Delta_k|`
+        and :math:`g_k` the arc's Jacobian times the k-th measurement's column."""
         s00, s01, s02, s11, s12, s22 = self._cov
         e0, e1 = -dy, dx
         n00 = s00 + 2.0 * e0 * s02 + s22 * e0 * e0
@@ -213,12 +220,14 @@ class Odometry(ABC):
         n12 = s12 + e1 * s22
         n22 = s22
         if self._noise is not None:
+            da, db = _arc_derivatives(phi, ca, cb)
             # d(world displacement)/d(a, b, phi): the arc rotated into the world
             pa, pb = da * a - db * b, db * a + da * b
             gax, gay = c * ca - s * cb, s * ca + c * cb
             gbx, gby = -c * cb - s * ca, -s * cb + c * ca
             gpx, gpy = c * pa - s * pb, s * pa + c * pb
-            for (ua, ub, up), q in zip(inputs, variances, strict=True):
+            for (ua, ub, up), k, inc in zip(inputs, self._noise, increments, strict=True):
+                q = k * abs(inc)
                 if q == 0.0:
                     continue
                 gx = gax * ua + gbx * ub + gpx * up
@@ -230,12 +239,6 @@ class Odometry(ABC):
                 n12 += q * gy * up
                 n22 += q * up * up
         self._cov = (n00, n01, n02, n11, n12, n22)
-
-    def _variances(self, increments: tuple[float, ...]) -> tuple[float, ...]:
-        noise = self._noise
-        if noise is None:
-            return (0.0,) * len(increments)
-        return tuple(k * abs(d) for k, d in zip(noise, increments, strict=True))
 
 
 class DiffDriveOdometry(Odometry):
@@ -315,9 +318,13 @@ class DiffDriveOdometry(Odometry):
     def update(self, left: float, right: float, *, heading: float | None = None) -> Pose:
         """The pose after the wheels reached the cumulative distances ``left`` and ``right``
         (m, or counts); ``heading`` (rad) is a gyro's, overriding the wheels' turn."""
-        dl, dr = self._increments((left, right))
+        left = self._reading("left", left)
+        right = self._reading("right", right)
+        last_left, last_right = self._last
+        self._last = (left, right)
+        dl, dr = left - last_left, right - last_right
         return self._advance(0.5 * (dl + dr), 0.0, (dr - dl) / self._w, heading, self._cols,
-                             self._variances((dl, dr)))
+                             (dl, dr))
 
 
 class MecanumOdometry(Odometry):
@@ -380,11 +387,14 @@ class MecanumOdometry(Odometry):
                heading: float | None = None) -> Pose:
         """The pose after the wheels reached the cumulative distances FL, FR, RL, RR (m, or
         counts); ``heading`` (rad) is a gyro's, overriding the wheels' turn."""
-        inc = self._increments((fl, fr, rl, rr))
+        now = (self._reading("fl", fl), self._reading("fr", fr), self._reading("rl", rl),
+               self._reading("rr", rr))
+        last = self._last
+        self._last = now
+        inc = (now[0] - last[0], now[1] - last[1], now[2] - last[2], now[3] - last[3])
         a, b, c, d = inc
         return self._advance(0.25 * (a + b + c + d), self._t * (-a + b + c - d),
-                             self._k * (-a + b - c + d), heading, self._cols,
-                             self._variances(inc))
+                             self._k * (-a + b - c + d), heading, self._cols, inc)
 
 
 class AckermannOdometry(Odometry):
@@ -444,11 +454,15 @@ class AckermannOdometry(Odometry):
         """The pose after the rear-axle midpoint reached the cumulative ``distance`` (m, or
         counts) with the bicycle steering angle ``steering_angle`` (rad, positive left);
         ``heading`` (rad) is a gyro's, overriding the model's turn."""
-        delta = V.real("steering_angle", steering_angle)
+        delta = steering_angle
+        if type(delta) is not float or delta - delta != 0.0:
+            delta = V.real("steering_angle", steering_angle)
         if not abs(delta) <= self._limit or abs(delta) >= 0.5 * math.pi:
             raise ValueError(f"steering_angle must be within the car's max_steering_angle "
                              f"{self._limit:.6g} rad (and under pi/2), got {steering_angle!r}")
-        (ds,) = self._increments((distance,))
+        now = self._reading("distance", distance)
+        ds = now - self._last[0]
+        self._last = (now,)
         curvature = math.tan(delta) / self._length
         return self._advance(ds, 0.0, ds * curvature, heading, ((1.0, 0.0, curvature),),
-                             self._variances((ds,)))
+                             (ds,))
