@@ -7,3 +7,22 @@ the sources' conventions and ours live in :mod:`wheelkin.frames` and :mod:`wheel
 """
 
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str) -> object:
+    """``import wheelkin`` then ``wheelkin.odometry``: a submodule loads on first access
+    (PEP 562), so the package's import stays light and ``import wheelkin.x`` works as ever."""
+    import importlib
+
+    from wheelkin._registry import LAYERS
+
+    if any(name in modules for _, modules in LAYERS):
+        return importlib.import_module(f"wheelkin.{name}")
+    raise AttributeError(f"module 'wheelkin' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    from wheelkin._registry import LAYERS
+
+    public = {m for _, modules in LAYERS for m in modules if not m.startswith("_")}
+    return sorted(public | {"__version__"})
