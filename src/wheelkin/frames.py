@@ -73,6 +73,7 @@ __all__ = [
     "PoseRate",
     "Twist",
     "compose",
+    "field_relative",
     "fold_half_turn",
     "icr",
     "icr_array",
@@ -83,6 +84,7 @@ __all__ = [
     "relative",
     "se2_exp",
     "se2_log",
+    "to_field_relative",
     "transform_points",
     "wrap_angle",
 ]
@@ -341,6 +343,68 @@ def se2_log(delta: Pose | ArrayLike, dt: float = 1.0) -> Twist | np.ndarray:
     h = np.cos(half) / arc_factors(half)[0]  # (phi/2) cot(phi/2) = cos(u) / (sin(u)/u)
     out = ((h * dx + half * dy) / t, (-half * dx + h * dy) / t, phi / t)
     return _pack(Twist, [_no_negative_zero(o) for o in out], is_pose)
+
+
+def field_relative(twist: Twist | tuple[float, float, float], heading: float) -> Twist:
+    r"""A field-relative command (:math:`v_x, v_y` along the world's axes) as the body twist
+    of a robot whose heading is :math:`\theta`: the velocity rotated by :math:`-\theta`.
+
+    .. math:: v_x^b = v_x\cos\theta + v_y\sin\theta,\quad
+              v_y^b = -v_x\sin\theta + v_y\cos\theta,\quad \omega^b = \omega
+
+    WPILib's ``ChassisSpeeds.fromFieldRelativeSpeeds``: a driver pushes the stick "north" and
+    the robot goes north whatever its heading (a holonomic base; a differential drive can
+    follow only the part along its heading). The inverse is :func:`to_field_relative`.
+
+    Parameters
+    ----------
+    twist : Twist or (float, float, float)
+        :math:`(v_x, v_y, \omega)` with the velocity in the world frame, m/s and rad/s.
+    heading : float
+        The robot's heading :math:`\theta` (rad), counter-clockwise from world +x.
+
+    Returns
+    -------
+    Twist
+        The body-frame twist.
+
+    Examples
+    --------
+    Facing north (+y), "go east at 1 m/s" is "slide right":
+
+    >>> t = field_relative(Twist(1.0, 0.0, 0.0), math.pi / 2)
+    >>> print(f"{t.vx:.6f} {t.vy:.6f} {t.omega:.6f}")
+    0.000000 -1.000000 0.000000
+    """
+    vx, vy, w = (V.finite(n, c) for n, c in zip(("vx", "vy", "omega"), _one_twist(twist),
+                                                  strict=True))
+    th = V.finite("heading", heading)
+    c, s = math.cos(th), math.sin(th)
+    return Twist(vx * c + vy * s + 0.0, -vx * s + vy * c + 0.0, w)
+
+
+def to_field_relative(twist: Twist | tuple[float, float, float], heading: float) -> Twist:
+    r"""A body twist as a field-relative one (velocity along the world's axes): the inverse
+    of :func:`field_relative`, the velocity rotated by :math:`+\theta`.
+
+    Examples
+    --------
+    >>> t = to_field_relative(field_relative(Twist(1.0, 2.0, 0.5), 0.7), 0.7)
+    >>> print(f"{t.vx:.6f} {t.vy:.6f} {t.omega:.6f}")
+    1.000000 2.000000 0.500000
+    """
+    vx, vy, w = (V.finite(n, c) for n, c in zip(("vx", "vy", "omega"), _one_twist(twist),
+                                                  strict=True))
+    th = V.finite("heading", heading)
+    c, s = math.cos(th), math.sin(th)
+    return Twist(vx * c - vy * s + 0.0, vx * s + vy * c + 0.0, w)
+
+
+def _one_twist(twist: object) -> tuple[object, object, object]:
+    if isinstance(twist, tuple | list) and len(twist) == 3:
+        return twist[0], twist[1], twist[2]
+    raise V.InputTypeError(f"twist must be a Twist (vx, vy, omega), got the "
+                           f"{type(twist).__name__} {twist!r}")
 
 
 class PoseRate(NamedTuple):
