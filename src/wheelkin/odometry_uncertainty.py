@@ -544,7 +544,8 @@ def umbmark_correction(cw_end: ArrayLike, ccw_end: ArrayLike, side: float, track
     --------
     A 4 m square, a 0.34 m track; both runs return 8 cm off, CW at (-0.08, -0.08) m and CCW
     at (-0.08, 0.08) m: a pure type A error (the robot turns too little in both
-    directions), the true track 0.32 % larger.
+    directions), the true track 0.64 % larger than assumed (E_b = 90/(90 - alpha) with
+    alpha = (x_cw + x_ccw)/(-4 L) = 0.01 rad = 0.573 deg).
 
     >>> E_d, E_b = umbmark_correction([-0.08, -0.08], [-0.08, 0.08], 4.0, 0.34)
     >>> print(f"E_d = {E_d:.6f}, E_b = {E_b:.6f}")
