@@ -41,6 +41,9 @@ def _run(*args: str | Path, cwd: Path | None = None, timeout: float = 120.0) -> 
     return proc.stdout
 
 
+_WHEEL: list[Path] = []
+
+
 @pytest.fixture(scope="module")
 def installed(tmp_path_factory) -> Path:
     """The python of a fresh venv holding the wheelkin wheel and its runtime dependencies."""
@@ -49,6 +52,7 @@ def installed(tmp_path_factory) -> Path:
     _run(sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q",
          "-w", wheels, ROOT)
     (wheel,) = wheels.glob("wheelkin-*.whl")
+    _WHEEL.append(wheel)
     env_dir = tmp / "venv"
     venv.EnvBuilder(with_pip=True, clear=True).create(env_dir)
     python = env_dir / "bin" / "python"
@@ -109,3 +113,21 @@ def test_formula_modules_doctests_pass_in_the_installed_package(installed, tmp_p
                *(f"wheelkin.{name}" for name in (*SUPPORT_MODULES, *FORMULA_MODULES)),
                cwd=tmp_path, timeout=240.0)
     assert " passed" in out and "failed" not in out and "deselected" not in out
+
+
+def test_the_wheel_ships_the_licence_and_the_library_readme(installed):
+    import zipfile
+
+    (wheel,) = _WHEEL
+    with zipfile.ZipFile(wheel) as archive:
+        names = archive.namelist()
+        licences = [n for n in names if n.endswith(".dist-info/LICENSE")
+                    or "/licenses/LICENSE" in n]
+        assert licences, f"no LICENSE in the wheel: {names}"
+        assert archive.read(licences[0]) == (ROOT / "LICENSE").read_bytes()
+        (metadata,) = [n for n in names if n.endswith(".dist-info/METADATA")]
+        text = archive.read(metadata).decode()
+    # the package's own description (docs/PYPI.md), not the book's README
+    assert "Objects a control loop holds" in text
+    assert (ROOT / "docs" / "PYPI.md").read_text().splitlines()[0] in text
+    assert "jupyter-book" not in text.lower()
