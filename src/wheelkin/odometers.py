@@ -11,9 +11,10 @@ One object per vehicle, one interface (WPILib's ``DifferentialDriveOdometry`` is
   the heading the wheels give, as WPILib does: the gyro's change is the update's turn, and
   the pose's heading is the gyro's plus the offset fixed at :meth:`~Odometry.reset`;
 - ``reset(pose, distances, heading=None)`` starts again from ``pose``;
-- ``pose``, ``twist`` (the last update's motion in the body frame, per update, as WPILib's
-  ``Twist2d``: :math:`(\Delta x, \Delta y, \Delta\theta)` in m, m, rad; divide by the update's
-  period for a velocity) and ``covariance``.
+- ``pose``, ``twist`` (the last update's motion as a twist per update, as WPILib's
+  ``Twist2d``: the distance along the arc, sideways, and the turn, in m, m, rad; its
+  :func:`~wheelkin.frames.se2_exp` is the update's displacement; divide by the update's period
+  for a velocity) and ``covariance``.
 
 With ``wheel_noise`` (the variance of a wheel's distance error per metre rolled, m, the error
 model of the odometry chapter's "How sure is the pose?") each update also propagates the
@@ -183,6 +184,9 @@ class Odometry(ABC):
                 heading = V.real("heading", heading)
             new_theta = heading + self._offset
             phi = new_theta - theta
+        if a - a != 0.0 or b - b != 0.0 or phi - phi != 0.0:
+            raise ValueError(f"{', '.join(self._names)} are out of range: the motion "
+                             "overflows")
         if -SERIES_THRESHOLD < phi < SERIES_THRESHOLD:  # the arc kernel's two factors
             p2 = phi * phi
             ca = 1.0 - p2 / 6.0 + p2 * p2 / 120.0
@@ -199,7 +203,7 @@ class Odometry(ABC):
                 or bx - bx != 0.0 or by - by != 0.0:
             raise ValueError(f"{', '.join(self._names)} are out of range: the pose overflows")
         self._x, self._y, self._theta = x, y, new_theta
-        self._twist = _trusted(Twist, bx, by, phi)
+        self._twist = _trusted(Twist, a, b, phi)
         if self._track:
             self._propagate(dx, dy, c, s, a, b, phi, ca, cb, inputs, increments)
         return _trusted(Pose, x, y, new_theta)
