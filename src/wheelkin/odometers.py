@@ -335,8 +335,8 @@ class MecanumOdometry(Odometry):
     r"""Odometry of a four-wheel mecanum base from its wheels' rolled distances (FL, FR, RL,
     RR, m: each wheel's angle times its radius).
 
-    The body's motion is the least-squares map of :class:`~wheelkin.kinematics.
-    MecanumKinematics` applied to the increments,
+    The body's motion is the least-squares map of
+    :class:`~wheelkin.kinematics.MecanumKinematics` applied to the increments,
 
     .. math::
         \Delta x_b = \tfrac14(\Delta_{FL} + \Delta_{FR} + \Delta_{RL} + \Delta_{RR}),\quad

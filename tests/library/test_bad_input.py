@@ -235,6 +235,8 @@ OVERRIDES = {
     "motion_models.sample_motion_model_velocity": {"rng": None, "alphas": [0.01] * 6,
                                                   "twist": (0.4, 0.0, 0.2)},
     "odometry_fusion.ekf_step": {"delta_left": 0.1, "delta_right": 0.12},
+    "frames.field_relative": {"heading": 0.3},
+    "frames.to_field_relative": {"heading": 0.3},
 }
 
 
