@@ -6,8 +6,9 @@ hand-written pure-Python version of the same formula, and the chapter function t
 replaces in a loop (validated arrays).
 
 robotpy-wpimath is not part of the book's stack: install it for this benchmark only,
-``.venv/bin/pip install -r requirements-bench.txt``. Without it the WPILib column says
-"not installed" and the budget's "within 3x of WPILib" cannot be checked.
+``.venv/bin/pip install -r requirements-bench.txt``; then ``python -m benchmarks.objects``
+(or ``make bench``). Without it the WPILib column says "not installed" and the budget's
+"within 3x of WPILib" cannot be checked.
 
 Timing: ``timeit`` batches of ``NUMBER`` calls; per round the median of ``BATCHES`` batches;
 the figure is the minimum over ``ROUNDS`` rounds (the machine is shared, so the minimum of
@@ -19,14 +20,10 @@ from __future__ import annotations
 
 import math
 import statistics
-import sys
 import timeit
 from collections.abc import Callable
-from pathlib import Path
 
-# the shared RESULTS.md writer (tools/results.py once the tools are a package)
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _results import cpu, write_section
+from tools.results import cpu, markers, write_section
 
 NUMBER = 2000
 BATCHES = 7
@@ -257,7 +254,7 @@ def main() -> int:
     except PackageNotFoundError:
         wpi = "robotpy-wpimath not installed (pip install -r requirements-bench.txt)"
     verdict = "met by every call" if not failures else "MISSED: " + ", ".join(failures)
-    begin, end = "<!-- BEGIN objects -->", "<!-- END objects -->"
+    begin, end = markers("objects")
     body = "\n".join(lines)
     section = (f"{begin}\n## Loop objects: per-call cost (`benchmarks/objects.py`)\n\n"
                f"Machine: {cpu()}; {wpi}. One call at a time (`timeit`, {NUMBER} calls a "
