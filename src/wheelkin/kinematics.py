@@ -103,6 +103,8 @@ class RoverWheels(NamedTuple):
     steer_rb: float
 
 
+#: The wheel record of a vehicle: what its :class:`VehicleKinematics` returns from ``inverse``
+#: and takes in ``forward`` and ``desaturate``.
 WheelsT = TypeVar("WheelsT", DiffDriveWheelSpeeds, MecanumWheelSpeeds, AckermannWheels,
                   RoverWheels)
 
