@@ -41,7 +41,8 @@ CORRECT = (
     'check("conventions.encoder_steps", encoder_steps_to_metres)',
 )
 #: The ramp exercise, as the book solves it (its stub reads the robot's mass and inertia
-#: from RADON_ULZER, the part of the library the exercise declares).
+#: from RADON_ULZER, the part of the library the exercise declares; each of its two tracks
+#: carries half the weight).
 RAMP = '''import math
 
 from wheelkin.sandbox import RADON_ULZER
@@ -53,7 +54,7 @@ GRAVITY = 9.81
 
 
 def grip_ramp_time(v, omega, mu):
-    circle = 0.4 * mu * M * GRAVITY
+    circle = 0.5 * mu * M * GRAVITY
     side = M * v * abs(omega) / 2
     if side >= circle:
         return math.inf
