@@ -29,8 +29,11 @@ The check against the ROS 2 steering controllers (``steering_controllers_library
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
-from typing import NamedTuple
+from collections.abc import Callable
+from typing import NamedTuple, ParamSpec, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -60,6 +63,34 @@ __all__ = [
 ]
 
 _HALF_PI = 0.5 * math.pi
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+def _lengths_by_name(func: Callable[_P, _R]) -> Callable[_P, _R]:
+    """``func`` with a clear TypeError when its keyword-only lengths are passed by position.
+
+    A car's lengths are keyword-only: ``ackermann_angles(2, 0.25, 0.33)`` with the wheelbase
+    and the track swapped would return plausible angles. Python's own message ("takes 1
+    positional argument but 3 were given") does not say what to write instead; this one names
+    the parameters.
+    """
+    params = inspect.signature(func).parameters.values()
+    positional = [p.name for p in params if p.kind is p.POSITIONAL_OR_KEYWORD]
+    named = [p.name for p in params if p.kind is p.KEYWORD_ONLY]
+
+    @functools.wraps(func)
+    def call(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        if len(args) > len(positional):
+            extra = named[:len(args) - len(positional)]
+            takes = f"takes {', '.join(positional)} by position and " if positional else "takes "
+            raise TypeError(
+                f"{func.__name__}() {takes}the car's dimensions by name only: write "
+                f"{', '.join(f'{n}=...' for n in extra)} (got {len(args)} positional "
+                "arguments; lengths in the wrong order would give plausible wrong answers)")
+        return func(*args, **kwargs)
+
+    return call
 
 
 class AckermannAngles(NamedTuple):
@@ -114,7 +145,8 @@ def _radius(name: str, value) -> np.ndarray:
     return arr
 
 
-def steering_angle(radius: ArrayLike, wheelbase: float) -> float | NDArray[np.float64]:
+@_lengths_by_name
+def steering_angle(radius: ArrayLike, *, wheelbase: float) -> float | NDArray[np.float64]:
     r"""The bicycle model's front steering angle for a turning radius of the rear axle.
 
     .. math:: \delta = \arctan\frac{L}{R}
@@ -134,11 +166,11 @@ def steering_angle(radius: ArrayLike, wheelbase: float) -> float | NDArray[np.fl
 
     Examples
     --------
-    >>> round(math.degrees(steering_angle(1.0, 1.0)), 6)
+    >>> round(math.degrees(steering_angle(1.0, wheelbase=1.0)), 6)
     45.0
-    >>> steering_angle(np.inf, 0.3)
+    >>> steering_angle(np.inf, wheelbase=0.3)
     0.0
-    >>> steering_angle(0.0, 0.3)
+    >>> steering_angle(0.0, wheelbase=0.3)
     Traceback (most recent call last):
     ...
     ValueError: radius must be non-zero (+-inf for straight ahead), got 0.0
@@ -153,7 +185,9 @@ def steering_angle(radius: ArrayLike, wheelbase: float) -> float | NDArray[np.fl
     return _out(delta)
 
 
-def steering_from_curvature(curvature: ArrayLike, wheelbase: float) -> float | NDArray[np.float64]:
+@_lengths_by_name
+def steering_from_curvature(curvature: ArrayLike, *,
+                            wheelbase: float) -> float | NDArray[np.float64]:
     r"""The bicycle model's front steering angle for a path curvature of the rear axle.
 
     .. math:: \delta = \arctan(L\,\kappa)
@@ -172,9 +206,9 @@ def steering_from_curvature(curvature: ArrayLike, wheelbase: float) -> float | N
 
     Examples
     --------
-    >>> round(steering_from_curvature(2.0, 0.5), 12) == round(math.pi / 4, 12)
+    >>> round(steering_from_curvature(2.0, wheelbase=0.5), 12) == round(math.pi / 4, 12)
     True
-    >>> steering_from_curvature([0.0, -1.0], 1.0).round(4).tolist()
+    >>> steering_from_curvature([0.0, -1.0], wheelbase=1.0).round(4).tolist()
     [0.0, -0.7854]
     """
     k = V.finite_array("curvature", curvature)
@@ -182,7 +216,8 @@ def steering_from_curvature(curvature: ArrayLike, wheelbase: float) -> float | N
     return _out(np.arctan(L * k) + 0.0)
 
 
-def ackermann_outer_angle(inner_angle: ArrayLike, wheelbase: float,
+@_lengths_by_name
+def ackermann_outer_angle(inner_angle: ArrayLike, *, wheelbase: float,
                           track_width: float) -> float | NDArray[np.float64]:
     r"""The outer front wheel's angle that satisfies the Ackermann condition.
 
@@ -207,7 +242,8 @@ def ackermann_outer_angle(inner_angle: ArrayLike, wheelbase: float,
 
     Examples
     --------
-    >>> round(math.degrees(ackermann_outer_angle(math.radians(30), 2.5, 1.5)), 4)
+    >>> round(math.degrees(ackermann_outer_angle(math.radians(30), wheelbase=2.5,
+    ...                                          track_width=1.5)), 4)
     23.21
     """
     d = _steer("inner_angle", inner_angle)
@@ -217,7 +253,8 @@ def ackermann_outer_angle(inner_angle: ArrayLike, wheelbase: float,
     return _out(np.sign(d) * np.arctan(L * t / (L + W * t)) + 0.0)
 
 
-def ackermann_angles(radius: ArrayLike, wheelbase: float, track_width: float) -> AckermannAngles:
+@_lengths_by_name
+def ackermann_angles(radius: ArrayLike, *, wheelbase: float, track_width: float) -> AckermannAngles:
     r"""Left and right front wheel angles of an ideal Ackermann car for a turning radius.
 
     The ICR is on the rear axle line at :math:`(0, R)` (rear-axle midpoint frame); the left
@@ -246,10 +283,10 @@ def ackermann_angles(radius: ArrayLike, wheelbase: float, track_width: float) ->
 
     Examples
     --------
-    >>> left, right = ackermann_angles(5.0, 2.5, 1.5)
+    >>> left, right = ackermann_angles(5.0, wheelbase=2.5, track_width=1.5)
     >>> round(math.degrees(left), 4), round(math.degrees(right), 4)
     (30.4655, 23.4986)
-    >>> ackermann_angles(0.5, 2.5, 1.5)
+    >>> ackermann_angles(0.5, wheelbase=2.5, track_width=1.5)
     Traceback (most recent call last):
     ...
     ValueError: radius must satisfy |radius| > track_width/2 = 0.75 m, got 0.5
@@ -264,7 +301,8 @@ def ackermann_angles(radius: ArrayLike, wheelbase: float, track_width: float) ->
                            _out(np.arctan(L / (R + W / 2)) + 0.0))
 
 
-def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike,
+@_lengths_by_name
+def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike, *,
                   wheelbase: float) -> Twist | NDArray[np.float64]:
     r"""Body twist of the rear-axle midpoint of the kinematic bicycle model.
 
@@ -286,9 +324,9 @@ def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike,
 
     Examples
     --------
-    >>> [round(c, 6) for c in bicycle_twist(2.0, math.pi / 4, 0.5)]
+    >>> [round(c, 6) for c in bicycle_twist(2.0, math.pi / 4, wheelbase=0.5)]
     [2.0, 0.0, 4.0]
-    >>> bicycle_twist(1.0, 2.0, 0.5)
+    >>> bicycle_twist(1.0, 2.0, wheelbase=0.5)
     Traceback (most recent call last):
     ...
     ValueError: steering_angle must be in (-pi/2, pi/2) rad, got 2.0
@@ -300,7 +338,8 @@ def bicycle_twist(speed: ArrayLike, steering_angle: ArrayLike,
     return _twist(np.stack([v + 0.0, np.zeros_like(v), v * np.tan(d) / L + 0.0], axis=-1))
 
 
-def tricycle_twist(front_speed: ArrayLike, steering_angle: ArrayLike,
+@_lengths_by_name
+def tricycle_twist(front_speed: ArrayLike, steering_angle: ArrayLike, *,
                    wheelbase: float) -> Twist | NDArray[np.float64]:
     r"""Body twist of the rear-axle midpoint of a tricycle driven by its steered front wheel.
 
@@ -328,7 +367,7 @@ def tricycle_twist(front_speed: ArrayLike, steering_angle: ArrayLike,
 
     Examples
     --------
-    >>> tricycle_twist(1.0, math.pi / 2, 0.5)
+    >>> tricycle_twist(1.0, math.pi / 2, wheelbase=0.5)
     Twist(vx=0.0, vy=0.0, omega=2.0)
     """
     v = V.finite_array("front_speed", front_speed)
@@ -341,7 +380,8 @@ def tricycle_twist(front_speed: ArrayLike, steering_angle: ArrayLike,
     return _twist(np.stack([vx + 0.0, np.zeros_like(v), v * np.sin(d) / L + 0.0], axis=-1))
 
 
-def side_slip_angle(steering_angle: ArrayLike, wheelbase: float,
+@_lengths_by_name
+def side_slip_angle(steering_angle: ArrayLike, *, wheelbase: float,
                     rear_to_com: float) -> float | NDArray[np.float64]:
     r"""Side-slip angle :math:`\beta` of a point on the centre line at :math:`l_r` ahead of
     the rear axle.
@@ -364,7 +404,7 @@ def side_slip_angle(steering_angle: ArrayLike, wheelbase: float,
 
     Examples
     --------
-    >>> round(math.degrees(side_slip_angle(math.pi / 4, 2.0, 1.0)), 4)
+    >>> round(math.degrees(side_slip_angle(math.pi / 4, wheelbase=2.0, rear_to_com=1.0)), 4)
     26.5651
     """
     d = _steer("steering_angle", steering_angle)
@@ -373,7 +413,8 @@ def side_slip_angle(steering_angle: ArrayLike, wheelbase: float,
     return _out(np.arctan(lr * np.tan(d) / L) + 0.0)
 
 
-def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, wheelbase: float,
+@_lengths_by_name
+def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, *, wheelbase: float,
                       rear_to_com: float) -> CentreOfMassTwist:
     r"""Body twist at the centre of mass (:math:`l_r` ahead of the rear axle), given its speed.
 
@@ -404,12 +445,12 @@ def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, wheelbase: fl
 
     Examples
     --------
-    >>> tw = bicycle_twist_com(1.0, math.pi / 4, 2.0, 1.0)
+    >>> tw = bicycle_twist_com(1.0, math.pi / 4, wheelbase=2.0, rear_to_com=1.0)
     >>> [round(float(x), 6) for x in tw]
     [0.894427, 0.447214, 0.447214, 0.463648]
     """
     v = V.finite_array("speed", speed)
-    beta = np.asarray(side_slip_angle(steering_angle, wheelbase, rear_to_com))
+    beta = np.asarray(side_slip_angle(steering_angle, wheelbase=wheelbase, rear_to_com=rear_to_com))
     d = np.asarray(steering_angle, dtype=float)
     L = float(wheelbase)
     v, d, beta = V.broadcast(speed=v, steering_angle=d, side_slip=beta)
@@ -418,7 +459,8 @@ def bicycle_twist_com(speed: ArrayLike, steering_angle: ArrayLike, wheelbase: fl
                              _out(v * cb * np.tan(d) / L + 0.0), _out(beta + 0.0))
 
 
-def minimum_radius(max_steering_angle: ArrayLike, wheelbase: float,
+@_lengths_by_name
+def minimum_radius(max_steering_angle: ArrayLike, *, wheelbase: float,
                    track_width: float = 0.0) -> float | NDArray[np.float64]:
     r"""Smallest turning radius of the rear-axle midpoint for a steering limit.
 
@@ -445,9 +487,9 @@ def minimum_radius(max_steering_angle: ArrayLike, wheelbase: float,
 
     Examples
     --------
-    >>> round(minimum_radius(math.pi / 4, 2.5), 6)
+    >>> round(minimum_radius(math.pi / 4, wheelbase=2.5), 6)
     2.5
-    >>> round(minimum_radius(math.pi / 4, 2.5, 1.5), 6)
+    >>> round(minimum_radius(math.pi / 4, wheelbase=2.5, track_width=1.5), 6)
     3.25
     """
     d = _steer("max_steering_angle", max_steering_angle)
@@ -532,7 +574,8 @@ def _follower(driver, W, a, b, tie):
     return psi - (math.pi - b)
 
 
-def linkage_angles(inner_angle: ArrayLike, track_width: float, arm_length: float,
+@_lengths_by_name
+def linkage_angles(inner_angle: ArrayLike, *, track_width: float, arm_length: float,
                    arm_angle: float) -> LinkageAngles:
     r"""Front wheel angles of a trapezoidal (Jeantaud) steering linkage.
 
@@ -567,10 +610,12 @@ def linkage_angles(inner_angle: ArrayLike, track_width: float, arm_length: float
 
     Examples
     --------
-    >>> left, right = linkage_angles(math.radians(30), 1.5, 0.15, math.radians(16.7))
+    >>> left, right = linkage_angles(math.radians(30), track_width=1.5, arm_length=0.15,
+    ...                              arm_angle=math.radians(16.7))
     >>> round(math.degrees(left), 4), round(math.degrees(right), 4)
     (30.0, 25.2212)
-    >>> [round(float(x), 12) for x in linkage_angles(0.3, 1.5, 0.15, 0.0)]  # parallel
+    >>> parallel = linkage_angles(0.3, track_width=1.5, arm_length=0.15, arm_angle=0.0)
+    >>> [round(float(x), 12) for x in parallel]
     [0.3, 0.3]
     """
     d = _steer("inner_angle", inner_angle)
@@ -585,8 +630,9 @@ def linkage_angles(inner_angle: ArrayLike, track_width: float, arm_length: float
     return LinkageAngles(_out(left + 0.0), _out(right + 0.0))
 
 
-def linkage_error(inner_angle: ArrayLike, wheelbase: float, track_width: float, arm_length: float,
-                  arm_angle: float) -> float | NDArray[np.float64]:
+@_lengths_by_name
+def linkage_error(inner_angle: ArrayLike, *, wheelbase: float, track_width: float,
+                  arm_length: float, arm_angle: float) -> float | NDArray[np.float64]:
     r"""The linkage's Ackermann error: its outer wheel angle minus the Ackermann one.
 
     .. math:: e(\delta_i) = \delta_o^{link}(\delta_i) - \delta_o^{Ack}(\delta_i)
@@ -611,20 +657,25 @@ def linkage_error(inner_angle: ArrayLike, wheelbase: float, track_width: float, 
 
     Examples
     --------
-    >>> round(linkage_error(0.0, 2.5, 1.5, 0.15, 0.3), 12)
+    >>> round(linkage_error(0.0, wheelbase=2.5, track_width=1.5, arm_length=0.15,
+    ...                     arm_angle=0.3), 12)
     0.0
-    >>> e = linkage_error(math.radians(30), 2.5, 1.5, 0.15, 0.0)   # parallel steering
+    >>> e = linkage_error(math.radians(30), wheelbase=2.5, track_width=1.5,
+    ...                   arm_length=0.15, arm_angle=0.0)   # parallel steering
     >>> round(math.degrees(e), 4)
     6.79
     """
     d = _steer("inner_angle", inner_angle)
     L = V.positive("wheelbase", wheelbase)
-    left, right = linkage_angles(d, track_width, arm_length, arm_angle)
+    left, right = linkage_angles(d, track_width=track_width, arm_length=arm_length,
+                                 arm_angle=arm_angle)
     outer = np.where(d < 0, left, right)
-    return _out(outer - np.asarray(ackermann_outer_angle(d, L, track_width)) + 0.0)
+    ideal = ackermann_outer_angle(d, wheelbase=L, track_width=track_width)
+    return _out(outer - np.asarray(ideal) + 0.0)
 
 
-def jeantaud_arm_angle(wheelbase: float, track_width: float) -> float:
+@_lengths_by_name
+def jeantaud_arm_angle(*, wheelbase: float, track_width: float) -> float:
     r"""The classic rule's arm angle: the arms' lines meet at the rear axle's midpoint.
 
     .. math:: \tan\beta_J = \frac{W}{2L}
@@ -633,7 +684,7 @@ def jeantaud_arm_angle(wheelbase: float, track_width: float) -> float:
 
     Examples
     --------
-    >>> round(math.degrees(jeantaud_arm_angle(2.5, 1.5)), 4)
+    >>> round(math.degrees(jeantaud_arm_angle(wheelbase=2.5, track_width=1.5)), 4)
     16.6992
     """
     L = V.positive("wheelbase", wheelbase)
@@ -641,8 +692,9 @@ def jeantaud_arm_angle(wheelbase: float, track_width: float) -> float:
     return math.atan2(W / 2, L)
 
 
-def optimal_arm_angle(wheelbase: float, track_width: float, arm_length: float,
-                      max_inner_angle: float, *, samples: int = 181,
+@_lengths_by_name
+def optimal_arm_angle(*, wheelbase: float, track_width: float, arm_length: float,
+                      max_inner_angle: float, samples: int = 181,
                       tolerance: float = 1e-7) -> ArmAngle:
     r"""The arm angle that minimises the worst Ackermann error over a steering range.
 
@@ -670,7 +722,8 @@ def optimal_arm_angle(wheelbase: float, track_width: float, arm_length: float,
 
     Examples
     --------
-    >>> best = optimal_arm_angle(2.5, 1.5, 0.15, math.radians(35))
+    >>> best = optimal_arm_angle(wheelbase=2.5, track_width=1.5, arm_length=0.15,
+    ...                          max_inner_angle=math.radians(35))
     >>> round(math.degrees(best.arm_angle), 2), round(math.degrees(best.worst_error), 3)
     (23.67, 0.356)
     """

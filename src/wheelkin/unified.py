@@ -926,7 +926,7 @@ def car_wheels(*, wheelbase: float, track_width: float, wheel_radius: float,
         raise ValueError("turning_radius must be one number (inf: straight), got "
                          f"{turning_radius!r}")
     try:
-        left, right = carlike.ackermann_angles(turning_radius, L, W)
+        left, right = carlike.ackermann_angles(turning_radius, wheelbase=L, track_width=W)
     except ValueError as exc:
         raise ValueError(str(exc).replace("radius", "turning_radius", 1)) from None
     return (WheelConstraint("FL", (L, W / 2), 0.0, r, "steered", steering=float(left)),

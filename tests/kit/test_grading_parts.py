@@ -120,13 +120,15 @@ def test_library_parts_hold_the_declared_function_and_not_the_answer(tmp_path):
     # As in the grading sandbox: the parts on PYTHONPATH, the library's source out of reach.
     code = ("import sys; sys.path = [p for p in sys.path if not p.endswith('src')]; "
             "from wheelkin.carlike import linkage_error; "
-            "print(linkage_error(0.5, 2.5, 1.5, 0.15, 0.3))")
+            "print(linkage_error(0.5, wheelbase=2.5, track_width=1.5, arm_length=0.15, "
+            "arm_angle=0.3))")
     env = {**os.environ, "PYTHONPATH": str(tmp_path / "parts")}
     done = subprocess.run([sys.executable, "-P", "-s", "-c", code], capture_output=True,
                           text=True, cwd=tmp_path, env=env, check=True)
     from wheelkin.carlike import linkage_error
 
-    assert float(done.stdout) == pytest.approx(linkage_error(0.5, 2.5, 1.5, 0.15, 0.3))
+    assert float(done.stdout) == pytest.approx(linkage_error(0.5, wheelbase=2.5, track_width=1.5,
+                                                             arm_length=0.15, arm_angle=0.3))
 
 
 def test_library_parts_never_hold_an_exercise_reference(tmp_path):

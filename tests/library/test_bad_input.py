@@ -376,6 +376,21 @@ def test_the_cases_named_in_the_issue():
     assert np.all(np.isfinite(angles)) and abs(angles[1]) == pytest.approx(math.pi / 2)
 
 
+@pytest.mark.parametrize(("qualname", "fn"), [
+    (q, f) for q, f in _public_callables() if q.startswith("carlike.")
+    and any(p.kind is p.KEYWORD_ONLY for p in inspect.signature(f).parameters.values())])
+def test_a_cars_lengths_given_by_position_are_a_type_error_naming_them(qualname, fn):
+    """The valid call with every required argument given by position: a TypeError that says
+    which parameters to name, not Python's count of positional arguments."""
+    kwargs = _resolve(qualname, _good_call(qualname, fn, _good_values())
+                      | OVERRIDES.get(qualname, {}))
+    fn(**kwargs)  # valid by name
+    params = [p for p in inspect.signature(fn).parameters.values() if p.name in kwargs]
+    first_named = next(p.name for p in params if p.kind is p.KEYWORD_ONLY)
+    with pytest.raises(TypeError, match=rf"{first_named}=\.\.\."):
+        fn(*(kwargs[p.name] for p in params))
+
+
 def test_flags_are_booleans_not_truthy_values():
     from wheelkin import mecanum
 

@@ -13,6 +13,7 @@ form, in our sign convention (left positive, as theirs).
 
 from __future__ import annotations
 
+import inspect
 import math
 
 import numpy as np
@@ -54,7 +55,7 @@ def test_ackermann_condition_from_no_side_slip_rows():
     assert sp.simplify(1 / tan_r - 1 / tan_l - Ws / Ls) == 0
     f = sp.lambdify((R, Ls, Ws), (sp.atan(tan_l), sp.atan(tan_r)))
     for r in (1.0, 3.0, 7.5, 40.0):
-        got = C.ackermann_angles(r, L, W)
+        got = C.ackermann_angles(r, wheelbase=L, track_width=W)
         assert np.allclose(got, f(r, L, W), rtol=0, atol=1e-14)
 
 
@@ -72,12 +73,12 @@ def test_pure_pursuit_from_the_circle_geometry():
 def test_com_twist_against_rigid_body_velocity():
     """The CoM twist is the rear-axle twist moved to (l_r, 0), rescaled to the CoM's speed."""
     for d, lr in ((0.3, 1.0), (-0.6, 2.0), (0.0, 0.7), (1.2, 2.5)):
-        beta = C.side_slip_angle(d, L, lr)
+        beta = C.side_slip_angle(d, wheelbase=L, rear_to_com=lr)
         rear_speed = 1.0
         omega = rear_speed * math.tan(d) / L
         vcom = np.array([rear_speed, omega * lr])  # v + omega x (lr, 0)
         speed = float(np.hypot(*vcom))
-        tw = C.bicycle_twist_com(speed, d, L, lr)
+        tw = C.bicycle_twist_com(speed, d, wheelbase=L, rear_to_com=lr)
         assert tw.beta == pytest.approx(beta, abs=1e-15)
         assert np.allclose([tw.vx, tw.vy, tw.omega], [*vcom, omega], atol=1e-12)
 
@@ -87,21 +88,21 @@ def test_com_twist_against_rigid_body_velocity():
 
 def test_hand_values():
     # L = R: 45 degrees; Jeantaud rule for L = 2.5, W = 1.5: atan(0.3) = 16.699 deg.
-    assert C.steering_angle(2.5, 2.5) == pytest.approx(math.pi / 4)
-    assert C.steering_angle(-2.5, 2.5) == pytest.approx(-math.pi / 4)
-    assert C.jeantaud_arm_angle(L, W) == pytest.approx(math.atan(0.3))
+    assert C.steering_angle(2.5, wheelbase=2.5) == pytest.approx(math.pi / 4)
+    assert C.steering_angle(-2.5, wheelbase=2.5) == pytest.approx(-math.pi / 4)
+    assert C.jeantaud_arm_angle(wheelbase=L, track_width=W) == pytest.approx(math.atan(0.3))
     # R = 5, L = 2.5, W = 1.5: tan dL = 2.5 / 4.25, tan dR = 2.5 / 5.75.
-    left, right = C.ackermann_angles(5.0, L, W)
+    left, right = C.ackermann_angles(5.0, wheelbase=L, track_width=W)
     assert math.tan(left) == pytest.approx(2.5 / 4.25)
     assert math.tan(right) == pytest.approx(2.5 / 5.75)
     # Straight ahead.
-    assert tuple(C.ackermann_angles(math.inf, L, W)) == (0.0, 0.0)
+    assert tuple(C.ackermann_angles(math.inf, wheelbase=L, track_width=W)) == (0.0, 0.0)
     # Minimum radius: 45 deg on the inner wheel of a 2.5 m x 1.5 m car: 2.5 + 0.75.
-    assert C.minimum_radius(math.pi / 4, L, W) == pytest.approx(3.25)
+    assert C.minimum_radius(math.pi / 4, wheelbase=L, track_width=W) == pytest.approx(3.25)
     # Tricycle at 60 deg: rear speed v cos 60 = v / 2.
-    assert C.tricycle_twist(2.0, math.pi / 3, L)[0] == pytest.approx(1.0)
+    assert C.tricycle_twist(2.0, math.pi / 3, wheelbase=L)[0] == pytest.approx(1.0)
     # Parallel linkage (arm angle 0): both wheels equal.
-    assert np.allclose(C.linkage_angles(0.4, W, 0.2, 0.0), (0.4, 0.4), atol=1e-14)
+    assert np.allclose(C.linkage_angles(0.4, track_width=W, arm_length=0.2, arm_angle=0.0), (0.4, 0.4), atol=1e-14)
 
 
 # ------------------------------------------------------------------ properties
@@ -110,7 +111,7 @@ def test_hand_values():
 @settings(max_examples=200, deadline=None)
 @given(radii)
 def test_ackermann_condition_holds(radius):
-    left, right = C.ackermann_angles(radius, L, W)
+    left, right = C.ackermann_angles(radius, wheelbase=L, track_width=W)
     # ICR on the rear axle line: both wheel axes pass through (0, R).
     for (x, y), d in (((L, W / 2), left), ((L, -W / 2), right)):
         n = np.array([-math.sin(d), math.cos(d)])
@@ -119,17 +120,17 @@ def test_ackermann_condition_holds(radius):
     assert 1 / math.tan(right) - 1 / math.tan(left) == pytest.approx(W / L, rel=1e-9)
     inner, outer = (left, right) if radius > 0 else (right, left)
     assert abs(inner) > abs(outer)
-    assert C.ackermann_outer_angle(inner, L, W) == pytest.approx(outer, abs=1e-12)
+    assert C.ackermann_outer_angle(inner, wheelbase=L, track_width=W) == pytest.approx(outer, abs=1e-12)
 
 
 @settings(max_examples=200, deadline=None)
 @given(angles)
 def test_steering_radius_round_trip(d):
     R = L / math.tan(d)
-    assert C.steering_angle(R, L) == pytest.approx(d, abs=1e-12)
-    assert C.steering_from_curvature(1 / R, L) == pytest.approx(d, abs=1e-12)
+    assert C.steering_angle(R, wheelbase=L) == pytest.approx(d, abs=1e-12)
+    assert C.steering_from_curvature(1 / R, wheelbase=L) == pytest.approx(d, abs=1e-12)
     # The bicycle's front wheel points across the line to the ICR (0, R).
-    tw = C.bicycle_twist(1.0, d, L)
+    tw = C.bicycle_twist(1.0, d, wheelbase=L)
     vfront = np.array([tw[0], tw[2] * L])  # v + omega x (L, 0)
     assert math.atan2(vfront[1], vfront[0]) == pytest.approx(d, abs=1e-12)
 
@@ -139,19 +140,19 @@ def test_steering_radius_round_trip(d):
 def test_linkage_is_a_rigid_mechanism(inner, beta):
     """The tie rod keeps its length, and mirror symmetry holds."""
     a = 0.2
-    left, right = C.linkage_angles(inner, W, a, beta)
+    left, right = C.linkage_angles(inner, track_width=W, arm_length=a, arm_angle=beta)
     pl = np.array([a * math.cos(math.pi + beta + left), W / 2 + a * math.sin(math.pi + beta + left)])
     pr = np.array([a * math.cos(math.pi - beta + right),
                    -W / 2 + a * math.sin(math.pi - beta + right)])
     assert np.hypot(*(pl - pr)) == pytest.approx(W - 2 * a * math.sin(beta), rel=1e-12)
-    ml, mr = C.linkage_angles(-inner, W, a, beta)
+    ml, mr = C.linkage_angles(-inner, track_width=W, arm_length=a, arm_angle=beta)
     assert (ml, mr) == pytest.approx((-right, -left), abs=1e-12)
 
 
 def test_linkage_against_brute_force():
     """The outer angle found by scanning the tie-rod constraint on a fine grid."""
     a, beta, inner = 0.18, 0.3, 0.5
-    lk = C.linkage_angles(inner, W, a, beta)
+    lk = C.linkage_angles(inner, track_width=W, arm_length=a, arm_angle=beta)
     pl = np.array([a * math.cos(math.pi + beta + inner),
                    W / 2 + a * math.sin(math.pi + beta + inner)])
     grid = np.linspace(0.0, 0.8, 800001)
@@ -171,32 +172,32 @@ def test_second_order_arm_angle():
     for _ in range(60):  # fixed point of tan(beta) = (W - 2 a sin(beta)) / L
         beta = math.atan((W - 2 * a * math.sin(beta)) / L)
     small = np.array([0.01, 0.005])
-    e = np.abs(C.linkage_error(small, L, W, a, beta))
+    e = np.abs(C.linkage_error(small, wheelbase=L, track_width=W, arm_length=a, arm_angle=beta))
     assert e[0] / e[1] > 7.5  # third order or better
-    rule = C.jeantaud_arm_angle(L, W)
-    e2 = C.linkage_error(small, L, W, a, rule)
+    rule = C.jeantaud_arm_angle(wheelbase=L, track_width=W)
+    e2 = C.linkage_error(small, wheelbase=L, track_width=W, arm_length=a, arm_angle=rule)
     assert e2[0] / e2[1] == pytest.approx(4.0, rel=0.05)
     k = math.tan(rule) * W / (W - 2 * a * math.sin(rule)) - W / L  # predicted coefficient
     assert -e2[1] / small[1] ** 2 == pytest.approx(k, rel=0.02)
 
 
 def test_optimal_arm_angle_beats_a_scan():
-    best = C.optimal_arm_angle(L, W, 0.2, math.radians(35))
+    best = C.optimal_arm_angle(wheelbase=L, track_width=W, arm_length=0.2, max_inner_angle=math.radians(35))
     grid = np.linspace(0.0, 0.6, 601)
     d = np.linspace(0.0, math.radians(35), 181)
-    worst = [np.max(np.abs(C.linkage_error(d, L, W, 0.2, b))) for b in grid]
+    worst = [np.max(np.abs(C.linkage_error(d, wheelbase=L, track_width=W, arm_length=0.2, arm_angle=b))) for b in grid]
     assert best.worst_error <= min(worst) + 1e-9
     assert best.arm_angle == pytest.approx(grid[int(np.argmin(worst))], abs=2e-3)
-    assert best.worst_error < np.max(np.abs(C.linkage_error(d, L, W, 0.2,
-                                                             C.jeantaud_arm_angle(L, W))))
+    assert best.worst_error < np.max(np.abs(C.linkage_error(d, wheelbase=L, track_width=W, arm_length=0.2,
+                                                             arm_angle=C.jeantaud_arm_angle(wheelbase=L, track_width=W))))
 
 
 def test_vectorised_matches_scalar():
     R = np.array([1.0, -2.0, 10.0, np.inf])
-    left, right = C.ackermann_angles(R, L, W)
+    left, right = C.ackermann_angles(R, wheelbase=L, track_width=W)
     for i, r in enumerate(R):
-        assert (left[i], right[i]) == tuple(C.ackermann_angles(r, L, W))
-    tw = C.bicycle_twist([1.0, 2.0], [0.1, -0.2], L)
+        assert (left[i], right[i]) == tuple(C.ackermann_angles(r, wheelbase=L, track_width=W))
+    tw = C.bicycle_twist([1.0, 2.0], [0.1, -0.2], wheelbase=L)
     assert tw.shape == (2, 3)
 
 
@@ -221,10 +222,10 @@ def test_ros2_ackermann_inverse_kinematics(radius):
     wheelbase, track, r = 0.33, 0.27, 0.05
     v = 1.3
     (wr, wl), (ar, al) = _ros_ackermann_commands(v, v / radius, wheelbase, track, r)
-    left, right = C.ackermann_angles(radius, wheelbase, track)
+    left, right = C.ackermann_angles(radius, wheelbase=wheelbase, track_width=track)
     assert (left, right) == pytest.approx((al, ar), abs=1e-12)
     # The rear wheels: the rigid-body speed of (0, +-W/2) in our bicycle twist.
-    vx, _, om = C.bicycle_twist(v, C.steering_angle(radius, wheelbase), wheelbase)
+    vx, _, om = C.bicycle_twist(v, C.steering_angle(radius, wheelbase=wheelbase), wheelbase=wheelbase)
     assert ((vx - om * track / 2) / r, (vx + om * track / 2) / r) == pytest.approx(
         (wl, wr), rel=1e-12)
 
@@ -248,7 +249,7 @@ def test_ros2_bicycle_odometry(steer):
             ros[2] += dth
             ros[0] += R * (math.sin(ros[2]) - math.sin(old))
             ros[1] += -R * (math.cos(ros[2]) - math.cos(old))
-        vx, _, om = C.bicycle_twist(v, steer, wheelbase)
+        vx, _, om = C.bicycle_twist(v, steer, wheelbase=wheelbase)
         ours = arc_step(*ours, vx * dt, om * dt)
     assert np.allclose(ours, ros, atol=1e-12)
 
@@ -256,15 +257,15 @@ def test_ros2_bicycle_odometry(steer):
 def test_ros2_double_traction_speed_and_front_wheel_estimate():
     wheelbase, track, r = 0.33, 0.27, 0.05
     for radius in (1.0, -2.5, 6.0):
-        d = C.steering_angle(radius, wheelbase)
+        d = C.steering_angle(radius, wheelbase=wheelbase)
         v = 0.7
-        vx, _, om = C.bicycle_twist(v, d, wheelbase)
+        vx, _, om = C.bicycle_twist(v, d, wheelbase=wheelbase)
         wl, wr = (vx - om * track / 2) / r, (vx + om * track / 2) / r
         R = wheelbase / math.tan(d)
         ros_v = 0.5 * (wr * r * R / (R + track / 2) + wl * r * R / (R - track / 2))
         assert ros_v == pytest.approx(v, rel=1e-12)
         # Their bicycle angle from one front wheel's angle (right and left) agrees with ours.
-        left, right = C.ackermann_angles(radius, wheelbase, track)
+        left, right = C.ackermann_angles(radius, wheelbase=wheelbase, track_width=track)
         est_r = math.atan(wheelbase * math.tan(right)
                           / (wheelbase - track / 2 * math.tan(right)))
         est_l = math.atan(wheelbase * math.tan(left)
@@ -279,7 +280,7 @@ def test_ros2_four_argument_odometry_uses_the_small_angle_form():
     one-angle form give. Documented here as a known difference."""
     d, v = 0.4, 1.0
     theirs = d * v / 0.33
-    ours = C.bicycle_twist(v, d, 0.33)[2]
+    ours = C.bicycle_twist(v, d, wheelbase=0.33)[2]
     assert ours / theirs == pytest.approx(math.tan(d) / d)
     assert ours / theirs - 1 > 0.05
 
@@ -288,36 +289,68 @@ def test_ros2_four_argument_odometry_uses_the_small_angle_form():
 
 
 @pytest.mark.parametrize("call, match", [
-    (lambda: C.steering_angle(0.0, 1.0), "radius must be non-zero"),
-    (lambda: C.steering_angle(1.0, -1.0), "wheelbase must be a finite number > 0"),
-    (lambda: C.steering_angle(float("nan"), 1.0), "radius must not contain NaN"),
-    (lambda: C.ackermann_angles(0.5, 2.5, 1.5), r"\|radius\| > track_width/2"),
-    (lambda: C.ackermann_angles(5.0, 2.5, 0.0), "track_width must be a finite number > 0"),
-    (lambda: C.bicycle_twist(1.0, math.pi / 2, 1.0), r"steering_angle must be in \(-pi/2"),
-    (lambda: C.bicycle_twist("fast", 0.1, 1.0), "speed must be numeric"),
-    (lambda: C.tricycle_twist(1.0, 2.0, 1.0), "steering_angle must be in"),
-    (lambda: C.side_slip_angle(0.1, 1.0, 2.0), r"rear_to_com must be in \[0, 1\]"),
-    (lambda: C.minimum_radius(0.0, 1.0), "max_steering_angle must be in"),
-    (lambda: C.minimum_radius(0.3, 1.0, -0.1), "track_width must be a finite number >= 0"),
+    (lambda: C.steering_angle(0.0, wheelbase=1.0), "radius must be non-zero"),
+    (lambda: C.steering_angle(1.0, wheelbase=-1.0), "wheelbase must be a finite number > 0"),
+    (lambda: C.steering_angle(float("nan"), wheelbase=1.0), "radius must not contain NaN"),
+    (lambda: C.ackermann_angles(0.5, wheelbase=2.5, track_width=1.5), r"\|radius\| > track_width/2"),
+    (lambda: C.ackermann_angles(5.0, wheelbase=2.5, track_width=0.0), "track_width must be a finite number > 0"),
+    (lambda: C.bicycle_twist(1.0, math.pi / 2, wheelbase=1.0), r"steering_angle must be in \(-pi/2"),
+    (lambda: C.bicycle_twist("fast", 0.1, wheelbase=1.0), "speed must be numeric"),
+    (lambda: C.tricycle_twist(1.0, 2.0, wheelbase=1.0), "steering_angle must be in"),
+    (lambda: C.side_slip_angle(0.1, wheelbase=1.0, rear_to_com=2.0), r"rear_to_com must be in \[0, 1\]"),
+    (lambda: C.minimum_radius(0.0, wheelbase=1.0), "max_steering_angle must be in"),
+    (lambda: C.minimum_radius(0.3, wheelbase=1.0, track_width=-0.1), "track_width must be a finite number >= 0"),
     (lambda: C.pure_pursuit_curvature(0.0, 0.0), "must not be the origin"),
     (lambda: C.pure_pursuit_curvature(1.0, float("inf")), "y must not contain"),
-    (lambda: C.steering_from_curvature(1.0, 0.0), "wheelbase"),
-    (lambda: C.linkage_angles(0.3, 1.5, 0.2, math.pi / 2), "arm_angle must be in"),
-    (lambda: C.linkage_angles(0.3, 1.5, 5.0, 0.4), "arm_length must be <"),
-    (lambda: C.linkage_angles(1.5, 1.5, 0.7, 0.9), "beyond the linkage's reach"),
-    (lambda: C.linkage_error(0.3, -2.5, 1.5, 0.2, 0.3), "wheelbase"),
-    (lambda: C.optimal_arm_angle(2.5, 1.5, 0.2, 0.0), "max_inner_angle must be in"),
-    (lambda: C.optimal_arm_angle(2.5, 1.5, 0.2, 0.5, samples=2), "samples must be"),
-    (lambda: C.optimal_arm_angle(2.5, 1.5, 0.2, 0.5, tolerance=0), "tolerance"),
+    (lambda: C.steering_from_curvature(1.0, wheelbase=0.0), "wheelbase"),
+    (lambda: C.linkage_angles(0.3, track_width=1.5, arm_length=0.2, arm_angle=math.pi / 2), "arm_angle must be in"),
+    (lambda: C.linkage_angles(0.3, track_width=1.5, arm_length=5.0, arm_angle=0.4), "arm_length must be <"),
+    (lambda: C.linkage_angles(1.5, track_width=1.5, arm_length=0.7, arm_angle=0.9), "beyond the linkage's reach"),
+    (lambda: C.linkage_error(0.3, wheelbase=-2.5, track_width=1.5, arm_length=0.2, arm_angle=0.3), "wheelbase"),
+    (lambda: C.optimal_arm_angle(wheelbase=2.5, track_width=1.5, arm_length=0.2, max_inner_angle=0.0), "max_inner_angle must be in"),
+    (lambda: C.optimal_arm_angle(wheelbase=2.5, track_width=1.5, arm_length=0.2, max_inner_angle=0.5, samples=2), "samples must be"),
+    (lambda: C.optimal_arm_angle(wheelbase=2.5, track_width=1.5, arm_length=0.2, max_inner_angle=0.5, tolerance=0), "tolerance"),
     # where the formula overflows: a refusal naming the inputs, never a warning or 90 degrees
-    (lambda: C.steering_angle(5e-324, 1.0), "radius is too small for the wheelbase"),
-    (lambda: C.minimum_radius(5e-324, 1.0), "max_steering_angle, wheelbase and track_width"),
+    (lambda: C.steering_angle(5e-324, wheelbase=1.0), "radius is too small for the wheelbase"),
+    (lambda: C.minimum_radius(5e-324, wheelbase=1.0), "max_steering_angle, wheelbase and track_width"),
     (lambda: C.pure_pursuit_curvature(1e-170, 1e-170), "x and y is out of range"),
-    (lambda: C.linkage_angles(0.3, 1e300, 0.15, 0.3), "track_width and arm_length"),
+    (lambda: C.linkage_angles(0.3, track_width=1e300, arm_length=0.15, arm_angle=0.3), "track_width and arm_length"),
 ])
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+# ------------------------------------------------------------------ lengths by name
+
+#: A car's dimensions: what a port could swap silently if they were positional (issue 23).
+CAR_DIMENSIONS = {"wheelbase", "track_width", "rear_to_com", "arm_length", "arm_angle",
+                  "max_inner_angle"}
+CAR_FUNCTIONS = [name for name in C.__all__ if inspect.isfunction(getattr(C, name))]
+
+
+@pytest.mark.parametrize("name", CAR_FUNCTIONS)
+def test_a_cars_dimensions_are_keyword_only(name):
+    params = inspect.signature(getattr(C, name)).parameters.values()
+    positional = [p.name for p in params if p.kind is not p.KEYWORD_ONLY]
+    assert not CAR_DIMENSIONS & set(positional), f"{name} takes {positional} by position"
+
+
+def test_the_swapped_lengths_of_the_issue_are_refused():
+    """``ackermann_angles(2, 0.25, 0.33)``: wheelbase and track swapped gave plausible angles."""
+    with pytest.raises(TypeError, match=r"ackermann_angles\(\).*wheelbase=\.\.\., "
+                                        r"track_width=\.\.\."):
+        C.ackermann_angles(2, 0.25, 0.33)  # positional on purpose
+    left, right = C.ackermann_angles(2.0, wheelbase=0.33, track_width=0.25)
+    # by hand: each front wheel points at the ICR (0, R) from (L, +-W/2)
+    assert left == pytest.approx(math.atan(0.33 / (2.0 - 0.125)), rel=1e-15)
+    assert right == pytest.approx(math.atan(0.33 / (2.0 + 0.125)), rel=1e-15)
+
+
+def test_named_lengths_in_any_order_give_the_same_answer():
+    a = C.linkage_error(0.4, wheelbase=2.5, track_width=1.5, arm_length=0.15, arm_angle=0.3)
+    b = C.linkage_error(0.4, arm_angle=0.3, arm_length=0.15, track_width=1.5, wheelbase=2.5)
+    assert a == b
 
 
 def test_a_far_look_ahead_point_is_straight_ahead():

@@ -70,7 +70,7 @@ def test_car_matches_ackermann_angles_and_refuses_what_a_car_cannot_do():
     for radius in (5.0, -7.5, 40.0, 1.0):
         v = 3.0
         wheels = car.inverse(Twist(v, 0.0, v / radius))
-        expected = carlike.ackermann_angles(radius, 2.5, 1.5)
+        expected = carlike.ackermann_angles(radius, wheelbase=2.5, track_width=1.5)
         assert (wheels.left_angle, wheels.right_angle) == pytest.approx(tuple(expected))
         assert wheels.rear_left == pytest.approx(v * (radius - 0.75) / radius)
         assert car.forward(wheels) == pytest.approx((v, 0.0, v / radius))
@@ -295,7 +295,7 @@ def test_numeric_strings_are_refused_by_the_functions_too():
     with pytest.raises(TypeError, match="track_width"):
         diffdrive.wheel_speeds(1.0, 0.0, "0.5")  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="radius"):
-        carlike.ackermann_angles(["2"], 2.5, 1.5)  # type: ignore[arg-type]
+        carlike.ackermann_angles(["2"], wheelbase=2.5, track_width=1.5)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="v"):  # a TypeError is a ValueError too
         diffdrive.wheel_speeds(None, 0, 0.5)  # type: ignore[arg-type]
 

@@ -18,6 +18,7 @@ with Pose/Twist objects and with stacks of arrays.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -84,6 +85,14 @@ def test_the_table_reaches_every_formula_module():
 # --------------------------------------------------------------------------------------------
 # Poses and twists: one is a Pose/Twist, a stack is an array (..., 3)
 
+def _car(fn):
+    """A car-like function with its wheelbase (a keyword) given: 2.5 m."""
+    @functools.wraps(fn)
+    def call(*args):
+        return fn(*args, wheelbase=2.5)
+    return call
+
+
 #: (function, arguments with Pose/Twist objects, the record type it must return).
 ONE = [
     (frames.se2_exp, (Twist(1.0, 0.2, 0.5), 0.5), Pose),
@@ -102,8 +111,8 @@ ONE = [
     (frames.mecanum_doc_twist_to_ours, (1.0, 2.0, 0.3), Twist),
     (frames.rover_twist, (30.0, 10.0), Twist),
     (rover.document_twist, (30.0, 10.0), Twist),
-    (carlike.bicycle_twist, (1.0, 0.2, 2.5), Twist),
-    (carlike.tricycle_twist, (1.0, 0.2, 2.5), Twist),
+    (_car(carlike.bicycle_twist), (1.0, 0.2), Twist),
+    (_car(carlike.tricycle_twist), (1.0, 0.2), Twist),
     (mecanum.circle_twist, (2.0, 10.0), Twist),
     (mecanum.go_to_point_twist, (Pose(0.0, 0.0, 0.0), Pose(1.0, 1.0, 0.5), 1.0, 1.0), Twist),
 ]
@@ -133,8 +142,8 @@ MANY = [
     (frames.ours_to_firmware_pose, lambda: (_stack(Pose(1.0, 2.0, 0.3)),)),
     (frames.firmware_pose_to_ours, lambda: (np.ones(4), np.ones(4), np.zeros(4))),
     (frames.rover_twist, lambda: (np.full(4, 30.0), np.full(4, 10.0))),
-    (carlike.bicycle_twist, lambda: (np.ones(4), np.full(4, 0.2), 2.5)),
-    (carlike.tricycle_twist, lambda: (np.ones(4), np.full(4, 0.2), 2.5)),
+    (_car(carlike.bicycle_twist), lambda: (np.ones(4), np.full(4, 0.2))),
+    (_car(carlike.tricycle_twist), lambda: (np.ones(4), np.full(4, 0.2))),
     (mecanum.circle_twist, lambda: (np.full(4, 2.0), 10.0)),
     (mecanum.forward_kinematics, lambda: (np.ones((4, 4)), mecanum.EXAMPLE_GEOMETRY)),
 ]
@@ -153,9 +162,9 @@ def test_a_record_and_its_array_agree():
     for k in range(4):
         one = frames.se2_exp(Twist(*twists[k]), 0.5)
         assert np.array_equal(np.asarray(one), frames.se2_exp(twists, 0.5)[k])
-    bike = carlike.bicycle_twist(np.ones(4), np.full(4, 0.2), 2.5)
-    assert np.array_equal(np.asarray(carlike.bicycle_twist(1.0, 0.2, 2.5)), bike[0])
-    assert math.isclose(carlike.bicycle_twist(1.0, 0.2, 2.5).omega, math.tan(0.2) / 2.5)
+    bike = carlike.bicycle_twist(np.ones(4), np.full(4, 0.2), wheelbase=2.5)
+    assert np.array_equal(np.asarray(carlike.bicycle_twist(1.0, 0.2, wheelbase=2.5)), bike[0])
+    assert math.isclose(carlike.bicycle_twist(1.0, 0.2, wheelbase=2.5).omega, math.tan(0.2) / 2.5)
 
 
 #: Sandbox entries whose sweep wrapper returns the world's state after the call (the call

@@ -85,11 +85,12 @@ def test_front_angles_match_the_library():
     for d in (-0.4, -0.1, 0.2, 0.4):
         R = L / math.tan(d)
         assert front_angles(Steering(), d, L, W) == pytest.approx(
-            tuple(carlike.ackermann_angles(R, L, W)), abs=1e-12)
-        inner = carlike.ackermann_angles(R, L, W)[0 if d > 0 else 1]
-        beta = carlike.jeantaud_arm_angle(L, W)
+            tuple(carlike.ackermann_angles(R, wheelbase=L, track_width=W)), abs=1e-12)
+        inner = carlike.ackermann_angles(R, wheelbase=L, track_width=W)[0 if d > 0 else 1]
+        beta = carlike.jeantaud_arm_angle(wheelbase=L, track_width=W)
         assert front_angles(Steering("linkage"), d, L, W) == pytest.approx(
-            tuple(carlike.linkage_angles(inner, W, 0.04, beta)), abs=1e-12)
+            tuple(carlike.linkage_angles(inner, track_width=W, arm_length=0.04,
+                                         arm_angle=beta)), abs=1e-12)
     assert front_angles(Steering("parallel"), 0.3, L, W) == (0.3, 0.3)
 
 
@@ -113,7 +114,7 @@ def test_pure_pursuit_follows_a_circle():
     assert dist.max() < 0.03
     # On a circle pure pursuit steers a little inside: kappa = 2 y / Ld^2 of a chord point.
     assert np.median(driver.log[200:]) == pytest.approx(
-        carlike.steering_angle(R, L), rel=0.02)
+        carlike.steering_angle(R, wheelbase=L), rel=0.02)
 
 
 @pytest.mark.parametrize("call, match", [

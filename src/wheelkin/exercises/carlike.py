@@ -31,7 +31,7 @@ __all__ = ["best_arm_angle", "front_wheel_angles", "pursuit_steering", "rover_ra
 def front_wheel_angles(R: float, L: float, W: float) -> NDArray[np.float64]:
     """(left, right) front wheel angles (rad) of an ideal Ackermann car turning with radius R
     (m, > 0 left) of its rear-axle midpoint."""
-    return np.array(carlike.ackermann_angles(R, L, W))
+    return np.array(carlike.ackermann_angles(R, wheelbase=L, track_width=W))
 
 
 def _swapped_sides(R, L, W):
@@ -73,7 +73,7 @@ Exercise(
 def tightest_radius(max_inner_deg: float, L: float, W: float) -> float:
     """Smallest turning radius (m) of the rear-axle midpoint of an Ackermann car whose inner
     front wheel can turn at most max_inner_deg degrees."""
-    return float(carlike.minimum_radius(math.radians(max_inner_deg), L, W))
+    return float(carlike.minimum_radius(math.radians(max_inner_deg), wheelbase=L, track_width=W))
 
 
 def _no_track(max_inner_deg, L, W):
@@ -105,7 +105,8 @@ Exercise(
 def pursuit_steering(x: float, y: float, L: float) -> float:
     """The bicycle steering angle (rad) that pure pursuit commands for the look-ahead point
     (x, y) (m, rear-axle frame, y left); wheelbase L (m)."""
-    return float(carlike.steering_from_curvature(carlike.pure_pursuit_curvature(x, y), L))
+    return float(carlike.steering_from_curvature(carlike.pure_pursuit_curvature(x, y),
+                                                 wheelbase=L))
 
 
 def _y_over_l2(x, y, L):
@@ -181,7 +182,8 @@ Exercise(
 def best_arm_angle(L: float, W: float, arm_length: float, max_inner_deg: float) -> float:
     """Design: the arm angle (rad) of a trapezoidal linkage that makes the worst Ackermann
     error over inner angles 0..max_inner_deg as small as possible."""
-    return carlike.optimal_arm_angle(L, W, arm_length, math.radians(max_inner_deg)).arm_angle
+    return carlike.optimal_arm_angle(wheelbase=L, track_width=W, arm_length=arm_length,
+                                     max_inner_angle=math.radians(max_inner_deg)).arm_angle
 
 
 def _rule_of_thumb(L, W, arm_length, max_inner_deg):

@@ -217,7 +217,8 @@ def front_angles(steering: Steering, delta: float, wheelbase: float, track_width
     beta = steering.arm_angle
     if beta is None:
         beta = math.atan2(W / 2, L)
-    lk = carlike.linkage_angles(inner, W, steering.arm_length, beta)
+    lk = carlike.linkage_angles(inner, track_width=W, arm_length=steering.arm_length,
+                                arm_angle=beta)
     return FrontAngles(float(lk.left), float(lk.right))
 
 

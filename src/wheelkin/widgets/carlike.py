@@ -253,7 +253,7 @@ class PursuitView:
         b = math.radians(bearing_deg)
         gx, gy = lookahead * math.cos(b), lookahead * math.sin(b)
         kappa = carlike.pure_pursuit_curvature(gx, gy)
-        delta = carlike.steering_from_curvature(kappa, CAR_L)
+        delta = carlike.steering_from_curvature(kappa, wheelbase=CAR_L)
         clipped = max(-RC_CAR_MAX_STEERING, min(RC_CAR_MAX_STEERING, delta))
         s = np.linspace(0.0, 2.5 * lookahead, 200)
         if abs(kappa) < 1e-9:
