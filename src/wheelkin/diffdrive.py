@@ -246,7 +246,10 @@ def wheel_speeds(v: ArrayLike, omega: ArrayLike, track_width: float) -> WheelSpe
     array([0.1  , 0.115])
     """
     v_arr, w_arr = _broadcast(v=v, omega=omega)
-    left, right = diff_drive_wheel_speeds(v_arr, w_arr, V.positive("track_width", track_width))
+    W = V.positive("track_width", track_width)
+    with np.errstate(all="ignore"):  # an overflow is refused below, naming the inputs
+        left, right = diff_drive_wheel_speeds(v_arr, w_arr, W)
+    V.finite_result("v, omega and track_width", left, right)
     return WheelSpeeds(_out(left), _out(right))
 
 

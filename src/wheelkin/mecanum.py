@@ -295,14 +295,18 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     g = _geometry(geometry)
     vx_a, vy_a, w_a = _broadcast(vx=V.finite_array("vx", vx), vy=V.finite_array("vy", vy),
                                  omega=V.finite_array("omega", omega))
-    if centre_of_rotation is not None:
-        c = V.finite_array("centre_of_rotation", centre_of_rotation)
-        if c.shape != (2,):
-            raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, got "
-                             f"shape {c.shape}")
-        vx_a, vy_a, w_a = shift_twist(vx_a, vy_a, w_a, c[0], c[1])
-    twist = np.stack([vx_a, vy_a, w_a], axis=-1)
-    return twist @ inverse_matrix(g).T
+    names = "vx, vy, omega and the geometry"
+    with np.errstate(all="ignore"):  # an overflow is refused below, naming the inputs
+        if centre_of_rotation is not None:
+            c = V.finite_array("centre_of_rotation", centre_of_rotation)
+            if c.shape != (2,):
+                raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, "
+                                 f"got shape {c.shape}")
+            vx_a, vy_a, w_a = shift_twist(vx_a, vy_a, w_a, c[0], c[1])
+            names = "vx, vy, omega, centre_of_rotation and the geometry"
+        twist = np.stack([vx_a, vy_a, w_a], axis=-1)
+        rates = twist @ inverse_matrix(g).T
+    return V.finite_result(names, rates)
 
 
 def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.ndarray:

@@ -470,15 +470,17 @@ def integrate_si(delta_left: ArrayLike, delta_right: ArrayLike, track_width: flo
     [[1.       0.       0.      ]
      [1.       0.       1.570796]]
     """
-    ds, dth = body_motion(delta_left, delta_right, track_width)
     V.choice("method", method, METHODS)
     p0 = V.pose("pose", pose)
-    theta = p0[2] + np.cumsum(dth)
-    start = np.concatenate(([p0[2]], theta))[:-1]
-    steps = _step(np.stack([np.zeros_like(ds), np.zeros_like(ds), start], axis=-1), ds, dth,
-                  method)
-    return np.column_stack([p0[0] + np.cumsum(steps[:, 0]), p0[1] + np.cumsum(steps[:, 1]),
-                            theta])
+    with np.errstate(all="ignore"):  # an overflow is refused below, naming the inputs
+        ds, dth = body_motion(delta_left, delta_right, track_width)
+        theta = p0[2] + np.cumsum(dth)
+        start = np.concatenate(([p0[2]], theta))[:-1]
+        steps = _step(np.stack([np.zeros_like(ds), np.zeros_like(ds), start], axis=-1), ds, dth,
+                      method)
+        out = np.column_stack([p0[0] + np.cumsum(steps[:, 0]),
+                               p0[1] + np.cumsum(steps[:, 1]), theta])
+    return V.finite_result("delta_left, delta_right, track_width and pose", out)
 
 
 # --------------------------------------------------------------------------------------------

@@ -391,6 +391,47 @@ def test_a_cars_lengths_given_by_position_are_a_type_error_naming_them(qualname,
         fn(*(kwargs[p.name] for p in params))
 
 
+def _overflowing_calls():
+    from wheelkin import diffdrive, mecanum, odometry
+
+    g = mecanum.EXAMPLE_GEOMETRY
+    return [
+        ("wheel_speeds", lambda: diffdrive.wheel_speeds(1e308, 1e308, 10.0),
+         "v, omega and track_width"),
+        ("integrate_si", lambda: odometry.integrate_si([1e308, 1e308], [1e308, 1e308], 0.5),
+         "delta_left, delta_right"),
+        ("integrate_si pose", lambda: odometry.integrate_si([1e308], [1e308], 0.5,
+                                                            pose=(1e308, 0.0, 0.0)),
+         "and pose"),
+        ("mecanum", lambda: mecanum.inverse_kinematics(1e308, 1e308, 0.0, g), "vx, vy, omega"),
+        ("mecanum centre", lambda: mecanum.inverse_kinematics(
+            0.0, 0.0, 1e308, g, centre_of_rotation=(1e308, 0.0)), "centre_of_rotation"),
+    ]
+
+
+@pytest.mark.parametrize(("label", "call", "names"), _overflowing_calls(),
+                         ids=[c[0] for c in _overflowing_calls()])
+def test_a_result_that_overflows_is_an_error_naming_the_inputs(label, call, names):
+    """At 1e308 these returned inf or NaN (issue 23): now a ValueError, and no warning."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises(ValueError, match=rf"{names}.* is out of range: the result overflows"):
+            call()
+
+
+def test_large_finite_inputs_still_give_the_formula():
+    """Just below the overflow the same functions return the hand formula's values."""
+    from wheelkin import diffdrive, mecanum, odometry
+
+    left, right = diffdrive.wheel_speeds(1e300, 2.0, 0.5)  # v -+ omega W / 2
+    assert (left, right) == (1e300 - 0.5, 1e300 + 0.5)
+    path = odometry.integrate_si([1e300, 1e300], [1e300, 1e300], 0.5)
+    assert path.tolist() == [[1e300, 0.0, 0.0], [2e300, 0.0, 0.0]]  # straight ahead
+    g = mecanum.EXAMPLE_GEOMETRY
+    rates = mecanum.inverse_kinematics(1e300, 0.0, 0.0, g)  # vx / r on every wheel
+    assert rates.tolist() == pytest.approx([1e300 / g.wheel_radius] * 4, rel=1e-15)
+
+
 def test_flags_are_booleans_not_truthy_values():
     from wheelkin import mecanum
 
