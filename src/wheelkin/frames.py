@@ -491,9 +491,22 @@ def compose(pose: Pose | ArrayLike, delta: Pose | ArrayLike) -> Pose | NDArray[n
     both = isinstance(pose, Pose) and isinstance(delta, Pose)
     x, y, th = _pose_columns("pose", pose)
     dx, dy, dth = _pose_columns("delta", delta)
+    _together("pose", x, "delta", dx)
     c, s = np.cos(th), np.sin(th)
     out = (x + c * dx - s * dy, y + s * dx + c * dy, wrap_angle(th + dth))
     return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], both)
+
+
+def _together(name_a: str, a, name_b: str, b, width_b: int = 3) -> None:
+    """``ValueError`` naming both parameters unless their stacks of poses (or points) broadcast
+    together (shapes (N, 3) and (M, 3) with N != M, neither 1, do not)."""
+    try:
+        np.broadcast_shapes(np.shape(a), np.shape(b))
+    except ValueError:
+        raise ValueError(
+            f"{name_a} and {name_b} must broadcast together (one and many, or as many of each): "
+            f"{name_a} has shape {(*np.shape(a), 3)}, {name_b} shape "
+            f"{(*np.shape(b), width_b)}") from None
 
 
 def _pose_columns(name: str, pose):
@@ -533,6 +546,7 @@ def relative(pose_from: Pose | ArrayLike, pose_to: Pose | ArrayLike) -> Pose | N
     both = isinstance(pose_from, Pose) and isinstance(pose_to, Pose)
     x0, y0, th0 = _pose_columns("pose_from", pose_from)
     x1, y1, th1 = _pose_columns("pose_to", pose_to)
+    _together("pose_from", x0, "pose_to", x1)
     c, s = np.cos(th0), np.sin(th0)
     dx, dy = x1 - x0, y1 - y0
     out = (c * dx + s * dy, -s * dx + c * dy, wrap_angle(np.asarray(th1) - th0))
@@ -550,6 +564,7 @@ def transform_points(pose: Pose | ArrayLike, points: ArrayLike) -> np.ndarray:
     """
     x, y, th = _pose_columns("pose", pose)
     p = V.shaped("points", points, (2,))
+    _together("pose", x, "points", p[..., 0], 2)
     c, s = np.cos(th), np.sin(th)
     return np.stack([x + c * p[..., 0] - s * p[..., 1], y + s * p[..., 0] + c * p[..., 1]],
                     axis=-1)

@@ -432,6 +432,39 @@ def test_large_finite_inputs_still_give_the_formula():
     assert rates.tolist() == pytest.approx([1e300 / g.wheel_radius] * 4, rel=1e-15)
 
 
+@pytest.mark.parametrize(("call", "names"), [
+    (lambda f: f.compose(np.zeros((3, 3)), np.zeros((2, 3))), ("pose", "delta")),
+    (lambda f: f.relative(np.zeros((3, 3)), np.zeros((2, 3))), ("pose_from", "pose_to")),
+    (lambda f: f.transform_points(np.zeros((3, 3)), np.zeros((2, 2))), ("pose", "points")),
+], ids=["compose", "relative", "transform_points"])
+def test_stacks_of_poses_that_do_not_match_name_both_parameters(call, names):
+    """Three poses and two deltas: not NumPy's 'operands could not be broadcast'."""
+    from wheelkin import frames
+
+    with pytest.raises(ValueError, match=rf"^{names[0]} and {names[1]} must broadcast together"
+                                         rf".*\(3, 3\)"):
+        call(frames)
+
+
+def test_stacks_that_broadcast_compose_pose_by_pose():
+    """One pose and many deltas, or as many of each: row k is the single composition."""
+    from wheelkin import frames
+
+    rng = np.random.default_rng(7)
+    poses, deltas = rng.normal(size=(4, 3)), rng.normal(size=(4, 3))
+    many = frames.compose(poses, deltas)
+    one = frames.compose(poses[0], deltas)
+    for k in range(4):
+        x, y, th = poses[k]
+        dx, dy, dth = deltas[k]
+        # by hand: rotate the delta into the world frame, add, wrap the heading
+        expected = [x + math.cos(th) * dx - math.sin(th) * dy,
+                    y + math.sin(th) * dx + math.cos(th) * dy,
+                    math.atan2(math.sin(th + dth), math.cos(th + dth))]
+        assert many[k] == pytest.approx(expected, abs=1e-12)
+        assert one[k] == pytest.approx(frames.compose(poses[0], deltas[k]), abs=1e-12)
+
+
 def test_flags_are_booleans_not_truthy_values():
     from wheelkin import mecanum
 
