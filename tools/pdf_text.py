@@ -209,21 +209,23 @@ def latex_text(text: str) -> str:
 
 def sort_key(latex: str) -> str:
     r"""An index sort key for a symbol: Greek letters by name, accents after the letter, a
-    bold symbol after its plain namesake (the index would merge two entries of one key).
+    bold or calligraphic symbol after its plain namesake (the index would merge two entries
+    of one key).
 
     >>> sort_key(r"\dot\varphi_i"), sort_key(r"\mathbf c"), sort_key(r"\Delta s")
     ('varphi i dot', 'c bold', 'Delta s')
-    >>> sort_key(r"\mathbf u_i"), sort_key("u_i")
-    ('u i bold', 'u i')
+    >>> sort_key(r"\mathbf u_i"), sort_key("u_i"), sort_key(r"\mathcal V")
+    ('u i bold', 'u i', 'V script')
     """
     bold = re.search(r"\\(?:mathbf|boldsymbol)\b", latex) is not None
+    script = re.search(r"\\mathcal\b", latex) is not None
     key = re.sub(r"\\dot(?![A-Za-z])\s*\\?(\w+)|\\dot\{\\?(\w+)\}",
                  lambda m: (m.group(1) or m.group(2)) + " dot", latex)
-    key = re.sub(r"\\(?:mathbf|mathrm|boldsymbol|operatorname|text)\b", "", key)
+    key = re.sub(r"\\(?:mathbf|mathrm|mathcal|boldsymbol|operatorname|text)\b", "", key)
     key = re.sub(r"\\([A-Za-z]+)", lambda m: m.group(1) + " "
                  if m.group(1).lower() in _GREEK else " ", key)
     key = re.sub(r"[^A-Za-z0-9]+", " ", key)
-    return " ".join(key.split() + (["bold"] if bold else []))
+    return " ".join(key.split() + (["bold"] if bold else []) + (["script"] if script else []))
 
 
 @dataclass
