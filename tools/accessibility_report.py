@@ -36,6 +36,12 @@ KINDS = ("sidebar toggle", "code fold", "answer fold", "dropdown", "search", "co
          "button")
 
 
+#: How the page names each kind of control: words true on paper as on the screen (the printed
+#: edition has no word for clicking or folding, tests/pdf).
+NAMES = {"code fold": "code toggle", "answer fold": "answer toggle", "dropdown": "menu",
+         "button": "other push control"}
+
+
 def summary(results: dict) -> dict:
     """The figures the page states, which the test compares with what it measured (all of
     them but the date and Chromium's version)."""
@@ -73,7 +79,7 @@ def render(results: dict, date: str) -> str:
     """The block of the page: the figures for the test, a paragraph and a table for readers."""
     figures = summary(results)
     book, student, walk = results["book"], results["student"], results["walk"]
-    used = ", ".join(figures["walk"]["used"])
+    used = ", ".join(NAMES.get(kind, kind) for kind in figures["walk"]["used"])
     chromium = results.get("chromium") or "Debian's"
     rows = [("the book", book), ("the student edition", student)]
     lines = [
@@ -103,7 +109,7 @@ def render(results: dict, date: str) -> str:
         "",
         f"The keyboard-only walk went through the {walk['pages']} pages of the chapter "
         f"*{_title(walk['chapter'])}*: Tab reached {walk['reached']} of its "
-        f"{walk['controls']} controls (a group of radio buttons counts as reached when one "
+        f"{walk['controls']} controls (a group of radio choices counts as reached when one "
         f"of them is), each with its focus seen on screen, and these controls were used "
         f"with the keys a reader would press: {used}.",
         "",

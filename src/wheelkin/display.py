@@ -203,8 +203,8 @@ def play(anim: Any, *, name: str, alt: str, caption: str | None = None,
     caption : str, optional
         Shown under the player.
     description : str, optional
-        What happens, in words, and what to notice: in a fold under the player, announced
-        with the frames by screen readers. Every animation of the book has one.
+        What happens, in words, and what to notice: in a collapsible note under the player,
+        announced with the frames by screen readers. Every animation of the book has one.
     **kwargs
         ``fps``, ``default_mode``, ``max_bytes``, ``colors`` of
         ``wheelkin.animation.to_html``.
