@@ -525,6 +525,15 @@ def _split_world_angle(previous_pose, pose):
                      math.atan2(math.sin(rot2), math.cos(rot2))])
 
 
+def _pose_pair(rng):
+    start = rng.uniform(-2.0, 2.0, 2)
+    step = rng.uniform(0.2, 1.5) * np.array([math.cos(a := rng.uniform(-math.pi, math.pi)),
+                                             math.sin(a)])
+    return ((float(start[0]), float(start[1]), float(rng.uniform(-math.pi, math.pi))),
+            (float(start[0] + step[0]), float(start[1] + step[1]),
+             float(rng.uniform(-math.pi, math.pi))))
+
+
 Exercise(
     "odometry.motion_split",
     "Thrun's split (rot1 rad, trans m, rot2 rad) of the motion from previous_pose to pose, "
@@ -534,6 +543,9 @@ Exercise(
      Case(((1.0, 2.0, 2.5), (0.2, 1.5, -2.9))),
      Case(((0.5, -0.5, -3.0), (0.6, -0.2, 2.9)))],
     wheel_names=("rot1", "trans", "rot2"),
+    # poses are not floats: the grader's hidden cases are drawn here (two poses at least
+    # 0.2 m apart, headings anywhere, so that both wraps are exercised)
+    hidden=lambda rng: [Case(_pose_pair(rng)) for _ in range(3)],
     mistakes=[
         (_split_unwrapped, "wrap both turns to (-pi, pi]: the difference of two headings can "
                            "leave that range."),
