@@ -19,7 +19,7 @@ rover_radius, icr (2 points), encoder_steps and the ramp):
 - extra exercises of other chapters: only the assignment's exercises count, no new column;
 - checks in dead code: the check that ran counts;
 - an absurd answer on the hidden cases for the judge that simulates: 0 for that exercise,
-  within the judge's time limit;
+  within the judge's time or memory limit (whichever the run meets first);
 - clashing names (``alice`` and ``alice.ipynb``, ``Bob``/``bob``, é in two Unicode forms),
   Unicode, a newline in a name, dot-files, a folder, links and a FIFO: a row each.
 """
@@ -60,7 +60,7 @@ EXPECTED = {
     "dead_code_check": ([0, 2, 0, 0], [("conventions.rover_radius", "sign must flip"),
                                        ("conventions.encoder_steps", "never ran")]),
     "absurd_judge_input": ([1, 2, 1, 0], [("sandbox.grip_ramp_time",
-                                           "judge's time limit")]),
+                                           "could not be judged within the judge's")]),
     # copies under awkward names
     "Ünïcødé 学生": (CORRECT, []),
     "alice": (CORRECT, []),

@@ -253,6 +253,8 @@ class Exercise:
             raw = self._answer(fn, case, where)
             try:
                 problem = raw if isinstance(raw, CheckResult) else self._judge(case, where, raw)
+            except MemoryError:  # the grader's judge reports its own memory limit
+                raise
             except Exception as exc:  # an answer the judge cannot even handle
                 problem = self._fail("wrong", f"for {where} your answer {_fmt(raw)} could not "
                                      f"be checked ({type(exc).__name__}: {exc})")
