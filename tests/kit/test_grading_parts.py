@@ -312,12 +312,20 @@ def test_a_bind_under_tmp_is_seen_inside_the_private_tmp(tmp_path):
         box = jail.Sandbox(jail.Limits(seconds=30), etc, [(shown, str(shown))],
                            uid_base=uid_base)
         done = box.run(["/bin/sh", "-c", f"cat {shown}/marker; touch /tmp/x && echo tmp-ok; "
-                        f"touch {shown}/y 2>/dev/null || echo read-only; ls /tmp | wc -l"])
+                        f"touch {shown}/y 2>/dev/null || echo read-only; ls /tmp"])
     finally:
         if lock is not None:
             os.close(lock)
     assert done.returncode == 0, done.tail
-    assert done.tail.split() == ["here", "tmp-ok", "read-only", "2"], done.tail
+    words = done.tail.split()
+    assert words[:3] == ["here", "tmp-ok", "read-only"], done.tail
+    # the private /tmp holds the file written there, the bind's top folder, and (when the
+    # grader's own Python lives under /tmp, as in a fresh clone made by mktemp) its venv's
+    expected = {"x", shown.relative_to("/tmp").parts[0]}
+    prefix = Path(sys.prefix).resolve()
+    if prefix.is_relative_to("/tmp"):
+        expected.add(prefix.relative_to("/tmp").parts[0])
+    assert set(words[3:]) == expected, done.tail
 
 
 @pytest.mark.skipif(os.geteuid() != 0, reason="needs root to start it as an ordinary user")
