@@ -24,13 +24,13 @@ a given steering, J is constant, and so is the effective mass A = J M^-1 J^T.
 
 Let xi_p be the twist the body would have after the step with no wheel forces (its world
 velocity kept, its frame turned by w dt: this is how the centripetal impulse of a turn is
-charged to the tyres). The impulses lambda (one per row) give xi' = xi_p + M^-1 J^T lambda.
+charged to the tyres). The impulses j (one per row; the book's symbol) give xi' = xi_p + M^-1 J^T j.
 
-1. *Stick*: lambda = A^+ (b - J xi_p). If the commands are consistent (b lies in the range of
+1. *Stick*: j = A^+ (b - J xi_p). If the commands are consistent (b lies in the range of
    J) this gives J xi' = b exactly: xi' is the kinematic twist, whatever xi_p was. If also every
    wheel's impulse is within its cap, that is the answer. Because J has full column rank,
    A^+ = J^+T M J^+ with J^+ = (J^T J)^-1 J^T, so xi' = J^+ b = P phi and
-   lambda = J (J^T J)^-1 M (xi' - xi_p): the least impulses that make the momentum change.
+   j = J (J^T J)^-1 M (xi' - xi_p): the least impulses that make the momentum change.
    (J^T J) is the same for every steering (a wheel's rolling and lateral directions are
    orthonormal), so a steering change costs only P: a few dozen float operations per step.
 2. *Slip*: otherwise xi' minimises the convex function
@@ -495,7 +495,7 @@ class ContactModel:
         The steering-independent part, shared between a robot's configurations.
 
     The stick path runs in plain floats: with P = J^+ B (3 x n) and C = (J^T J)^-1,
-    xi' = P phi, h = C M (xi' - xi_p), and a wheel's impulse is lambda_w = J_w h, whose length
+    xi' = P phi, h = C M (xi' - xi_p), and a wheel's impulse is j_w = J_w h, whose length
     for a conventional wheel is norm((h_x - p_y h_w, h_y + p_x h_w)) whatever its steering. The
     numpy matrices of the slip path are built on first use.
     """
@@ -690,7 +690,7 @@ class ContactModel:
     def _partition_solve(self, sliding: tuple, b, xp, start):
         """Minimise F with the wheels ``sliding`` slipping and the others stuck.
 
-        Returns ("ok", xi, lambda, slip speeds) if Coulomb's law holds, else ("retry", a
+        Returns ("ok", xi, j, slip speeds) if Coulomb's law holds, else ("retry", a
         corrected partition): a stuck wheel that cannot roll or whose impulse is over its cap
         is freed, a slipping wheel whose slip vanishes is stuck.
         """
