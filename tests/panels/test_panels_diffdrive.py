@@ -36,3 +36,37 @@ def test_wheel_speed_view_flags_the_int32_overflow():
     view.update(1000, 0)
     assert view.bar_text[1].get_text().startswith("centre 500 ")
     assert view.bar_text[0].get_text().startswith("centre 1000 ")
+
+
+def test_wheel_speed_view_holds_the_fastest_wheel_of_its_sliders():
+    """At the sliders' corners (|v| = 2000 steps/s, |omega| = 6000 mrad/s) the fastest wheel turns
+    at 2000 + 6.000 rad/s x 42.5 mm x 8.043 steps/mm = 4051 steps/s (by hand): its bar and its
+    arrow stay inside their axes, so no value runs off the picture unmarked."""
+    from matplotlib.figure import Figure
+
+    from wheelkin.widgets import all_panels
+    from wheelkin.widgets.diffdrive import DiffDriveView
+
+    panel = all_panels()["diffdrive.wheel_speeds"]()
+    try:
+        v_slider = panel.controls["v_steps_per_s"]
+        w_slider = panel.controls["omega_mrad_per_s"]
+        corners = [(v, w) for v in (v_slider.min, v_slider.max)
+                   for w in (w_slider.min, w_slider.max)]
+    finally:
+        panel.close()
+    assert max(abs(v) for v, _ in corners) == 2000
+    assert max(abs(w) for _, w in corners) == 6000
+    view = DiffDriveView(Figure())
+    lo, hi = view.bx.get_xlim()
+    bottom, top = view.ax.get_ylim()
+    fastest = 0.0
+    for v, w in corners:
+        view.update(v, w)
+        for bar in (*view.left_bars, *view.right_bars):
+            fastest = max(fastest, abs(bar.get_width()))
+            assert lo < bar.get_width() < hi, (v, w, bar.get_width())
+        for arrow in view.arrows:
+            tip = arrow.get_xy()[:, 1]
+            assert bottom < tip.min() and tip.max() < top, (v, w, tip.min(), tip.max())
+    assert round(fastest) == 4051

@@ -30,11 +30,14 @@ __all__ = ["DiffDriveView", "SpeedometerView", "speedometer_panel", "sweep_anima
 
 W_MM = dd.RADON_ULZER_CONSTANTS.track_width_mm
 ENC = dd.RADON_ULZER_CONSTANTS.steps_per_m
-ARROW_MM_PER_STEP_PER_S = 0.04     # arrow length per wheel speed (mm per step/s)
+ARROW_MM_PER_STEP_PER_S = 0.025    # arrow length per wheel speed (mm per step/s)
 _LEFT_COLOUR, _RIGHT_COLOUR = "#1f77b4", "#d62728"
 _XLIM = (-140.0, 140.0)            # page x: the robot's right (mm)
 _YLIM = (-110.0, 150.0)            # page y: forward (mm)
 _ROWS = ("correct", "as printed", "int32")
+#: Half-width of the bar axis (steps/s): holds the panel's fastest wheel, 2000 + 6000 mrad/s x
+#: 42.5 mm x 8.043 steps/mm = 4051 steps/s.
+_BAR_LIMIT = 4200
 #: Tops of the speedometer's speed axis (mm/s): the smallest that holds 2.2 x the true speed.
 _SPEED_TOPS = (20, 25, 30, 40, 50, 60, 80, 100, 120, 150, 200, 250, 300, 400, 500, 600, 800,
                1000, 1200)
@@ -98,15 +101,15 @@ class DiffDriveView:
                                   label="right wheel")
         bx.set_yticks(y, _ROWS, fontsize=8)
         bx.invert_yaxis()
-        bx.set_xlim(-3000, 3000)
-        bx.set_xticks([-2000, 0, 2000])
+        bx.set_xlim(-_BAR_LIMIT, _BAR_LIMIT)
+        bx.set_xticks([-4000, -2000, 0, 2000, 4000])
         self.zero_line = bx.axvline(0, color="k", lw=0.6)  # drawn over the bars
         bx.set_xlabel("wheel speed (steps/s)")
         bx.set_ylim(len(_ROWS) - 0.3, -1.3)  # headroom above the first row for the legend
         bx.legend(loc="upper center", ncol=2, fontsize=8,
                   frameon=False)
         # under each pair of bars, with a background that hides the zero line behind it
-        self.bar_text = [bx.text(-2900, i + 0.5, "", fontsize=8, va="center", zorder=5,
+        self.bar_text = [bx.text(-_BAR_LIMIT + 100, i + 0.5, "", fontsize=8, va="center", zorder=5,
                                  bbox={"fc": "white", "ec": "none", "pad": 0.5})
                          for i in range(3)]
         self.title = ax.set_title("", fontsize=9, loc="left")  # spans both panels
