@@ -160,9 +160,11 @@ class SteeringView:
         else:
             self.icr.set_data([0.0], [radius])
             self.centre = f"turning centre at y = {radius:.2f} m"
+            if self.vehicle != "car":  # the rover's chapter works in inches
+                self.centre += f" ({radius / 0.0254:.1f} in)"
         for bar, text, e in zip(self.bars, self.bar_text, errors, strict=True):
             bar.set_width(max(-4.0, min(4.0, e)))
-            text.set_text(f"{e:+.2f}°")
+            text.set_text(f"{round(e, 2) + 0.0:+.2f}°")  # never "-0.00°"
         label = _GEOMETRY_NAMES[geometry] if self.vehicle == "car" else "OSR four corners"
         self.title.set_text(f"{label}, steering {delta_deg:+.1f}°: {self.centre}")
 
@@ -268,7 +270,8 @@ class PursuitView:
         for patch, a, sgn in zip(self.front, (fl, fr), (1, -1), strict=True):
             patch.set_xy(_wheel_outline(CAR_L, sgn * CAR_W / 2, a, 0.1, 0.03))
         note = " (beyond the steering limit)" if clipped != delta else ""
-        self.text.set_text(f"κ = 2y/L_d² = {kappa:+.2f} 1/m\nδ = {math.degrees(delta):+.1f}°"
+        self.text.set_text(f"$\\kappa = 2y/L_d^2$ = {kappa:+.2f} 1/m"
+                           f"\nδ = {math.degrees(delta):+.1f}°"
                            + note)
         self.title.set_text(f"look-ahead $L_d$ = {lookahead:.2f} m at {bearing_deg:+.0f}°")
 
