@@ -622,7 +622,9 @@ def ideal_rates(table: tuple[tuple, ...], vx: float, vy: float, w: float,
         cx, cy = vx - w * py, vy + w * px
         if kind == "steered":
             speed = math.hypot(cx, cy)
-            if speed < 1e-12:
+            # At rest (at the ICR) when the terms cancel to rounding: relative to their size,
+            # so that a twist and its double steer alike however small they are.
+            if speed <= 1e-12 * (abs(vx) + abs(vy) + abs(w) * (abs(px) + abs(py))):
                 sign, speed = 1.0, 0.0
             else:
                 angles[slot], sign = fold_half_turn(math.atan2(cy, cx) - h)
