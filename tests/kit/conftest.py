@@ -16,18 +16,14 @@ from pathlib import Path
 
 import pytest
 
+from tests.own_layer import ignored_unless_asked
+
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
 
 
 def pytest_ignore_collect(collection_path, config):
-    asked = [Path(str(a).split("::")[0]).resolve() for a in config.args]
-    if any(a == HERE or HERE in a.parents for a in asked):
-        return None
-    path = collection_path.resolve()
-    if path == HERE or HERE in path.parents:
-        return True
-    return None
+    return ignored_unless_asked(HERE, collection_path, config)
 
 
 @pytest.fixture(scope="session")
