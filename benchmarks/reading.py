@@ -27,25 +27,20 @@ edition's site). ``--no-write`` only prints it.
 from __future__ import annotations
 
 import argparse
-import functools
-import http.server
 import sys
-import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from urllib.parse import urlsplit
 
 from tools.book_pages import toc_files
+from tools.book_site import CHROMIUM, CHROMIUM_ARGS, serve
 from tools.png_text import image_bytes, text_px
 from tools.results import cpu, markers, write_section
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 
-CHROMIUM = "/usr/bin/chromium"
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-background-networking",
-                 "--disable-component-update", "--disable-sync", "--no-first-run",
-                 "--disable-quic"]
+
 @dataclass
 class Row:
     page: str
@@ -110,18 +105,6 @@ _MEASURE = r"""
           animations: main.querySelectorAll("div.animation").length};
 }
 """
-
-
-class _Quiet(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, format, *args):
-        pass
-
-
-def serve(site: Path):
-    handler = functools.partial(_Quiet, directory=str(site))
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    return server, f"http://127.0.0.1:{server.server_address[1]}/"
 
 
 def _settle(page) -> None:
@@ -211,18 +194,13 @@ def measure(site: Path, pages: list[str] | None = None) -> list[Row]:
     from playwright.sync_api import sync_playwright
 
     pages = pages if pages is not None else toc_files()
-    server, base = serve(site)
-    try:
-        with sync_playwright() as playwright:
-            browser = playwright.chromium.launch(executable_path=CHROMIUM, headless=True,
-                                                 args=CHROMIUM_ARGS)
-            try:
-                return [measure_page(browser, base, site, name) for name in pages]
-            finally:
-                browser.close()
-    finally:
-        server.shutdown()
-        server.server_close()
+    with serve(site) as base, sync_playwright() as playwright:
+        browser = playwright.chromium.launch(executable_path=CHROMIUM, headless=True,
+                                             args=CHROMIUM_ARGS)
+        try:
+            return [measure_page(browser, base, site, name) for name in pages]
+        finally:
+            browser.close()
 
 
 def table(rows: list[Row]) -> str:

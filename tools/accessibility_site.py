@@ -10,11 +10,8 @@ levels A and AA (:data:`AXE_TAGS`), no rule turned off.
 from __future__ import annotations
 
 import functools
-import http.server
 import json
 import re
-import threading
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -75,30 +72,6 @@ def without_redirect(html: str) -> str:
     html = re.sub(r"<script\b.*?</script>\s*", "", html, flags=re.S | re.I)
     html = re.sub(r"<noscript\b.*?</noscript>\s*", "", html, flags=re.S | re.I)
     return re.sub(r"<meta[^>]+http-equiv=[\"']?refresh[^>]*>\s*", "", html, flags=re.I)
-
-
-class _QuietHandler(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, format, *args):
-        pass
-
-
-class _QuietServer(http.server.ThreadingHTTPServer):
-    def handle_error(self, request, client_address):
-        pass  # the browser closed a connection it no longer needed (a page was closed)
-
-
-@contextmanager
-def serve(folder: Path):
-    """``folder`` served on a free port of 127.0.0.1; yields its URL (ends with /)."""
-    handler = functools.partial(_QuietHandler, directory=str(folder))
-    server = _QuietServer(("127.0.0.1", 0), handler)
-    thread = threading.Thread(target=server.serve_forever, daemon=True)
-    thread.start()
-    try:
-        yield f"http://127.0.0.1:{server.server_address[1]}/"
-    finally:
-        server.shutdown()
-        server.server_close()
 
 
 @dataclass

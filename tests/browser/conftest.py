@@ -7,10 +7,7 @@ page go to ``_build/screenshots/`` for a human to look at.
 
 from __future__ import annotations
 
-import functools
-import http.server
 import shutil
-import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -24,6 +21,7 @@ from tools.book_site import (
     IN_CI,
     SCREENSHOTS,
     SITE,
+    serve,
 )
 
 
@@ -51,25 +49,13 @@ class PageReport:
     overflowing_code: list[str] = field(default_factory=list)
 
 
-class _QuietHandler(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, format, *args):
-        pass
-
-
 @pytest.fixture(scope="session")
 def site_url():
     """The built book, served from _build/html on a free port of 127.0.0.1."""
     if not (SITE / "index.html").is_file():
         pytest.fail("no built book in _build/html: run `make book` first")
-    handler = functools.partial(_QuietHandler, directory=str(SITE))
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    thread = threading.Thread(target=server.serve_forever, daemon=True)
-    thread.start()
-    try:
-        yield f"http://127.0.0.1:{server.server_address[1]}/"
-    finally:
-        server.shutdown()
-        server.server_close()
+    with serve(SITE) as url:
+        yield url
 
 
 @pytest.fixture(scope="session")

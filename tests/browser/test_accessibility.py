@@ -30,7 +30,7 @@ from pathlib import Path
 import pytest
 
 from tools import accessibility_site as a11y
-from tools.book_site import CHROMIUM, IN_CI, PAGES, ROOT, SITE
+from tools.book_site import CHROMIUM, IN_CI, PAGES, ROOT, SITE, serve
 from tools.student_edition import INSTRUCTOR_PAGES
 
 STUDENT_SITE = Path(os.environ.get("WHEELKIN_STUDENT_SITE")
@@ -69,7 +69,7 @@ def student_site_url():
     if not (STUDENT_SITE / "index.html").is_file():
         pytest.fail(f"no student web edition in {STUDENT_SITE}: run `make student` first "
                     "(`make browser` does)")
-    with a11y.serve(STUDENT_SITE) as url:
+    with serve(STUDENT_SITE) as url:
         yield url
 
 
