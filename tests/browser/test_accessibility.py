@@ -177,48 +177,50 @@ def test_axe_core_is_pinned_for_the_tests_only():
         assert not shipped, f"axe-core was copied into the site: {shipped}"
 
 
-@pytest.mark.parametrize("page", BOOK_PAGES)
-def test_book_page_passes_axe(audit, site_url, page):
-    report = audit("book", site_url, page)
+#: Every page of both editions, as (edition, page); the ids read ``book-<page>`` and
+#: ``student-<page>``.
+EDITION_PAGES = [pytest.param(edition, page, id=f"{edition}-{page}")
+                 for edition, pages in (("book", BOOK_PAGES), ("student", STUDENT_PAGES))
+                 for page in pages]
+#: The fixture that serves each edition.
+EDITION_URL = {"book": "site_url", "student": "student_site_url"}
+
+
+@pytest.fixture
+def audited(request, audit):
+    """audited(edition, page) -> (PageAudit, the page's name in a failure message); the
+    student site is served (and required) only when a student page is audited."""
+    def run(edition: str, page: str) -> tuple[a11y.PageAudit, str]:
+        url = request.getfixturevalue(EDITION_URL[edition])
+        where = page if edition == "book" else f"student edition, {page}"
+        return audit(edition, url, page), where
+
+    return run
+
+
+@pytest.mark.parametrize(("edition", "page"), EDITION_PAGES)
+def test_page_passes_axe(audited, edition, page):
+    report, where = audited(edition, page)
     assert report.rules_applied > 0, f"{page}: axe ran no rule (was the page empty?)"
     assert not report.violations and not report.dark_violations, (
-        f"{page}: axe-core {a11y.axe_version()} finds WCAG 2.1 A/AA violations:\n"
+        f"{where}: axe-core {a11y.axe_version()} finds WCAG 2.1 A/AA violations:\n"
         f"{_violations_message(report)}")
 
 
-@pytest.mark.parametrize("page", BOOK_PAGES)
-def test_book_page_controls_by_keyboard(audit, site_url, page):
-    problems = _keyboard_message(audit("book", site_url, page))
-    assert not problems, f"{page}:\n" + "\n".join(problems)
+@pytest.mark.parametrize(("edition", "page"), EDITION_PAGES)
+def test_page_controls_by_keyboard(audited, edition, page):
+    report, where = audited(edition, page)
+    problems = _keyboard_message(report)
+    assert not problems, f"{where}:\n" + "\n".join(problems)
 
 
-@pytest.mark.parametrize("page", BOOK_PAGES)
-def test_book_page_describes_figures_and_tables(audit, site_url, page):
+@pytest.mark.parametrize(("edition", "page"), EDITION_PAGES)
+def test_page_describes_figures_and_tables(audited, edition, page):
     """Every figure's alt text says more than its caption (what it shows and what to notice),
     every animation has a description tied to its frames, every table has header cells."""
-    problems = audit("book", site_url, page).undescribed
-    assert not problems, f"{page}:\n" + "\n".join(problems)
-
-
-@pytest.mark.parametrize("page", STUDENT_PAGES)
-def test_student_page_passes_axe(audit, student_site_url, page):
-    report = audit("student", student_site_url, page)
-    assert report.rules_applied > 0, f"{page}: axe ran no rule (was the page empty?)"
-    assert not report.violations and not report.dark_violations, (
-        f"student edition, {page}: axe-core {a11y.axe_version()} finds WCAG 2.1 A/AA "
-        f"violations:\n{_violations_message(report)}")
-
-
-@pytest.mark.parametrize("page", STUDENT_PAGES)
-def test_student_page_controls_by_keyboard(audit, student_site_url, page):
-    problems = _keyboard_message(audit("student", student_site_url, page))
-    assert not problems, f"student edition, {page}:\n" + "\n".join(problems)
-
-
-@pytest.mark.parametrize("page", STUDENT_PAGES)
-def test_student_page_describes_figures_and_tables(audit, student_site_url, page):
-    problems = audit("student", student_site_url, page).undescribed
-    assert not problems, f"student edition, {page}:\n" + "\n".join(problems)
+    report, where = audited(edition, page)
+    problems = report.undescribed
+    assert not problems, f"{where}:\n" + "\n".join(problems)
 
 
 def test_axe_catches_a_known_violation(browser, axe_ready):
@@ -682,11 +684,15 @@ def _chromium_version() -> str:
     return versions[0] if versions else ""
 
 
-def _described(pages: dict) -> dict:
-    """An edition's figures, animations and data tables, and how many of them are not
-    described (test_*_page_describes_figures_and_tables), over all its pages."""
-    return {k: sum(p[k] for p in pages.values())
-            for k in ("figures", "animations", "tables", "undescribed")}
+def _totals(pages: dict) -> dict:
+    """An edition's audit over all its pages: pages, violations (light and dark theme),
+    passed checks, controls, keyboard problems, and its figures, animations and data tables
+    with how many of them are not described (test_page_describes_figures_and_tables)."""
+    return {"pages": len(pages),
+            **{k: sum(p[k] for p in pages.values())
+               for k in ("violations", "dark_violations", "passed_checks", "controls",
+                         "keyboard_problems", "figures", "animations", "tables",
+                         "undescribed")}}
 
 
 def test_accessibility_page_states_the_measured_result(browser, axe_ready):
@@ -709,20 +715,7 @@ def test_accessibility_page_states_the_measured_result(browser, axe_ready):
         "axe_core": axe_ready, "tags": list(a11y.AXE_TAGS), "rules": rules,
         "chromium": _chromium_version(), "viewport": a11y.VIEWPORT,
         "python": platform.python_version(),
-        "book": {"pages": len(book), "violations": sum(p["violations"] for p in book.values()),
-                 "dark_violations": sum(p["dark_violations"] for p in book.values()),
-                 "passed_checks": sum(p["passed_checks"] for p in book.values()),
-                 "controls": sum(p["controls"] for p in book.values()),
-                 "keyboard_problems": sum(p["keyboard_problems"] for p in book.values()),
-                 **_described(book)},
-        "student": {"pages": len(student),
-                    "violations": sum(p["violations"] for p in student.values()),
-                    "dark_violations": sum(p["dark_violations"] for p in student.values()),
-                    "passed_checks": sum(p["passed_checks"] for p in student.values()),
-                    "controls": sum(p["controls"] for p in student.values()),
-                    "keyboard_problems": sum(p["keyboard_problems"]
-                                             for p in student.values()),
-                    **_described(student)},
+        "book": _totals(book), "student": _totals(student),
         "walk": {"chapter": walk["chapter"], "pages": len(walk["pages"]),
                  "stops": sum(p["stops"] for p in walk["pages"]),
                  "controls": sum(p["controls"] for p in walk["pages"]),
