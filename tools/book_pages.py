@@ -19,7 +19,6 @@ tests), so that none of them hard-codes the list of chapters. Two layouts live s
 
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -182,16 +181,13 @@ def book_structure(toc: Path = TOC) -> list[Division]:
 def page_title(page: str, root: Path = ROOT) -> str | None:
     """A page's title as both editions show it: its first level-one heading (a markdown file,
     or a notebook's markdown cells), None when it has none."""
+    from tools.book_text import page_markdown  # book_text builds on this module
+
     for suffix in (".md", ".ipynb"):
         path = root / f"{page}{suffix}"
         if not path.is_file():
             continue
-        if suffix == ".md":
-            texts = [path.read_text(encoding="utf-8")]
-        else:
-            cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
-            texts = ["".join(c["source"]) for c in cells if c["cell_type"] == "markdown"]
-        for text in texts:
+        for text in page_markdown(path):
             found = re.search(r"^#[ \t]+(.+?)[ \t]*$", text, re.M)
             if found:
                 return found.group(1)

@@ -15,6 +15,7 @@ import yaml
 from tests.pdf.printed_pdf import ROOT, is_part
 from tools import pdf_text
 from tools.book_pages import page_title
+from tools.book_text import page_markdown
 
 #: A page with fewer words is blank, or a part's title page (running head and page number).
 MIN_WORDS_ON_A_PAGE = 40
@@ -93,12 +94,7 @@ def _questions(division) -> list[pdf_text.Answer]:
             path = ROOT / f"{page}{suffix}"
             if not path.is_file():
                 continue
-            if suffix == ".md":
-                texts = [path.read_text(encoding="utf-8")]
-            else:
-                texts = ["".join(c["source"]) for c in json.loads(path.read_text())["cells"]
-                         if c["cell_type"] == "markdown"]
-            for text in texts:
+            for text in page_markdown(path):
                 pdf_text.split_answers(text, division.number or "", answers)
     return answers
 
