@@ -185,19 +185,21 @@ def polar_coordinates(pose: Pose | ArrayLike, goal: Pose | ArrayLike) -> PolarCo
     return PolarCoordinates(_out(rho), _out(alpha), _out(beta))
 
 
+def _gains(check: Callable[[str, object], float], **gains: object) -> tuple[float, ...]:
+    """The gains as floats, in the order given, each checked by ``check`` (``V.finite``,
+    ``V.positive``) under its own keyword's name, which a bad value's error names."""
+    return tuple(check(name, value) for name, value in gains.items())
+
+
 def _pose_gains(k_rho, k_alpha, k_beta) -> tuple[float, float, float]:
-    kr = V.finite("k_rho", k_rho)
-    ka = V.finite("k_alpha", k_alpha)
-    kb = V.finite("k_beta", k_beta)
+    kr, ka, kb = _gains(V.finite, k_rho=k_rho, k_alpha=k_alpha, k_beta=k_beta)
+    needs = "(the closed loop needs k_rho > 0, k_beta < 0, k_alpha - k_rho > 0)"
     if kr <= 0:
-        raise ValueError(f"k_rho must be > 0 (the closed loop needs k_rho > 0, k_beta < 0, "
-                         f"k_alpha - k_rho > 0), got {k_rho!r}")
+        raise ValueError(f"k_rho must be > 0 {needs}, got {k_rho!r}")
     if kb >= 0:
-        raise ValueError(f"k_beta must be < 0 (the closed loop needs k_rho > 0, k_beta < 0, "
-                         f"k_alpha - k_rho > 0), got {k_beta!r}")
+        raise ValueError(f"k_beta must be < 0 {needs}, got {k_beta!r}")
     if not ka - kr > 0:
-        raise ValueError(f"k_alpha - k_rho must be > 0 (the closed loop needs k_rho > 0, "
-                         f"k_beta < 0, k_alpha - k_rho > 0), got k_alpha = {k_alpha!r}, "
+        raise ValueError(f"k_alpha - k_rho must be > 0 {needs}, got k_alpha = {k_alpha!r}, "
                          f"k_rho = {k_rho!r}")
     return kr, ka, kb
 
@@ -347,9 +349,7 @@ def strong_stability_margin(k_rho: float, k_alpha: float, k_beta: float) -> floa
     >>> print(f"{strong_stability_margin(3, 8, -3):.3f} {strong_stability_margin(3, 8, -1.5):.3f}")
     1.090 3.590
     """
-    kr = V.finite("k_rho", k_rho)
-    ka = V.finite("k_alpha", k_alpha)
-    kb = V.finite("k_beta", k_beta)
+    kr, ka, kb = _gains(V.finite, k_rho=k_rho, k_alpha=k_alpha, k_beta=k_beta)
     with np.errstate(all="ignore"):
         margin = ka + 5.0 / 3.0 * kb - 2.0 / math.pi * kr
     return float(V.finite_result("k_rho, k_alpha, k_beta", margin))
@@ -468,8 +468,7 @@ def follow_line(pose: Pose | ArrayLike, line_point: ArrayLike, line_heading: flo
     v = V.finite("speed", speed)
     if abs(v) > 1e3:
         raise ValueError(f"speed must be within [-1000, 1000] m/s, got {speed!r}")
-    ky = V.positive("k_offset", k_offset)
-    kt = V.positive("k_heading", k_heading)
+    ky, kt = _gains(V.positive, k_offset=k_offset, k_heading=k_heading)
     e_y, e_theta = _line_error(p, point, heading)
     with np.errstate(all="ignore"):
         omega = -ky * v * e_y * _sinc(e_theta) - kt * abs(v) * e_theta
@@ -578,9 +577,7 @@ def track_trajectory(pose: Pose | ArrayLike, reference: Pose | ArrayLike,
     if np.max(np.abs(tw[..., [0, 2]]), initial=0.0) > 1e3:
         raise ValueError("reference_twist must have |v_r| <= 1000 m/s and |omega_r| <= 1000 "
                          f"rad/s, got {reference_twist!r}")
-    kx = V.positive("k_x", k_x)
-    ky = V.positive("k_y", k_y)
-    kt = V.positive("k_theta", k_theta)
+    kx, ky, kt = _gains(V.positive, k_x=k_x, k_y=k_y, k_theta=k_theta)
     p, r, tw = V.broadcast(pose=p, reference=r, reference_twist=tw)
     e_x, e_y, e_theta = _tracking_error(p, r)
     v_r, w_r = tw[..., 0], tw[..., 2]
