@@ -26,7 +26,7 @@ import time
 
 import numpy as np
 
-from tools.results import cpu, markers, write_section
+from tools.results import cpu, load_average, markers, write_section
 from wheelkin import control
 from wheelkin.sandbox import RADON_ULZER
 from wheelkin.widgets.control import (
@@ -93,8 +93,7 @@ def main(argv=None) -> int:
         "## Driving to a pose",
         "",
         f"Machine: {cpu()}, numpy {np.__version__}. Date: {_dt.date.today().isoformat()}. "
-        f"Load average (1, 5, 15 min) before: {', '.join(f'{x:.1f}' for x in before)}; "
-        f"after: {', '.join(f'{x:.1f}' for x in after)}. "
+        f"{load_average(before, after)}. "
         "Produced by `python -m benchmarks.control`.",
         "",
         f"The pose controller (`wheelkin.control.move_to_pose`, Corke's gains (3, 8, -3) 1/s) "

@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from tools.results import cpu, markers, write_section
+from tools.results import cpu, load_average, markers, write_section
 from wheelkin import odometry as odo
 
 BEGIN, END = markers("montecarlo")
@@ -75,8 +75,7 @@ def report(result: dict, load: tuple) -> str:
         "## Monte Carlo odometry",
         "",
         f"Machine: {cpu()}, numpy {np.__version__}. Date: {_dt.date.today().isoformat()}. "
-        f"Load average (1, 5, 15 min) before: {', '.join(f'{x:.1f}' for x in load[0])}; "
-        f"after: {', '.join(f'{x:.1f}' for x in load[1])}. "
+        f"{load_average(*load)}. "
         "Produced by `python -m benchmarks.montecarlo`.",
         "",
         f"`odometry.monte_carlo_poses`: {result['runs']} runs of a "

@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from tools.results import cpu, markers, write_section
+from tools.results import cpu, load_average, markers, write_section
 from wheelkin import frames
 from wheelkin import odometry as odo
 
@@ -73,8 +73,7 @@ def main(argv=None) -> int:
         "## Motion models",
         "",
         f"Machine: {cpu()}, numpy {np.__version__}. Date: {_dt.date.today().isoformat()}. "
-        f"Load average (1, 5, 15 min) before: {', '.join(f'{x:.1f}' for x in before)}; "
-        f"after: {', '.join(f'{x:.1f}' for x in after)}. "
+        f"{load_average(before, after)}. "
         "Produced by `python -m benchmarks.motion_models`.",
         "",
         f"{SAMPLES:,} samples (or hypotheses) of one motion, repeated {args.repeat} times.",

@@ -27,16 +27,14 @@ import datetime as _dt
 import os
 import sys
 import time
-from pathlib import Path
 
 import matplotlib
 import numpy as np
 
-from tools.results import cpu, markers, write_section
+from tools.results import RESULTS, cpu, load_average, markers, write_section
 from wheelkin.widgets import all_panels, slider_values
 
 BUDGET_MS = 50.0
-RESULTS = Path(__file__).with_name("RESULTS.md")
 
 BEGIN, END = markers("panels")
 
@@ -112,14 +110,12 @@ def verdict(row: dict) -> str:
 
 
 def report(result: dict) -> str:
-    load = ", ".join(f"{x:.1f}" for x in result["load"][0])
-    load_after = ", ".join(f"{x:.1f}" for x in result["load"][1])
     lines = [
         BEGIN,
         "## Slider response",
         "",
         f"Machine: {machine()}. Date: {_dt.date.today().isoformat()}. "
-        f"Load average (1, 5, 15 min) before: {load}; after: {load_after} (other jobs shared "
+        f"{load_average(*result['load'])} (other jobs shared "
         "the cores, so the figures over all sweeps are pessimistic). "
         "Produced by `python -m benchmarks.panels`.",
         "",

@@ -38,13 +38,12 @@ import os
 import statistics
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 import pymunk
 from scipy.integrate import solve_ivp
 
-from tools.results import cpu, markers, write_section
+from tools.results import RESULTS, cpu, load_average, markers, write_section
 from wheelkin.sandbox import (
     LAB_ROBOT,
     MECANUM_ROBOT,
@@ -55,7 +54,6 @@ from wheelkin.sandbox import (
 )
 
 DT = 1 / 240
-RESULTS = Path(__file__).with_name("RESULTS.md")
 
 BEGIN, END = markers("sandbox")
 
@@ -466,9 +464,7 @@ def report(result: dict) -> str:
         "## Sandbox",
         "",
         f"Machine: {machine()}. Date: {_dt.date.today().isoformat()}. "
-        f"Load average (1, 5, 15 min) before: "
-        f"{', '.join(f'{x:.1f}' for x in result['load'][0])}; after: "
-        f"{', '.join(f'{x:.1f}' for x in result['load'][1])} (other jobs shared the 2 cores, "
+        f"{load_average(*result['load'])} (other jobs shared the 2 cores, "
         "so the medians are pessimistic). Produced by `python -m benchmarks.sandbox`.",
         "",
         "### Speed",

@@ -43,10 +43,9 @@ from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
 
-from tools.results import markers, write_section
+from tools.results import RESULTS, markers, write_section
 
 ROOT = Path(__file__).resolve().parents[1]
-RESULTS = Path(__file__).with_name("RESULTS.md")
 
 BEGIN, END = markers("sizes")
 

@@ -28,6 +28,19 @@ def cpu() -> str:
     return f"{name}, {os.cpu_count()} logical CPUs; Python {platform.python_version()}"
 
 
+def load_average(before: tuple[float, ...], after: tuple[float, ...]) -> str:
+    """The sentence every benchmark writes down about the machine's load, from
+    ``os.getloadavg()`` taken before and after the measurement.
+
+    >>> load_average((1.0, 0.5, 0.25), (2.0, 1.04, 0.96))
+    'Load average (1, 5, 15 min) before: 1.0, 0.5, 0.2; after: 2.0, 1.0, 1.0'
+    """
+    def three(load: tuple[float, ...]) -> str:
+        return ", ".join(f"{x:.1f}" for x in load)
+
+    return f"Load average (1, 5, 15 min) before: {three(before)}; after: {three(after)}"
+
+
 def markers(name: str) -> tuple[str, str]:
     """The comment lines that delimit section ``name``."""
     return f"<!-- BEGIN {name} -->", f"<!-- END {name} -->"

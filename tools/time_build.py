@@ -27,7 +27,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from tools.results import markers, write_section
+from tools.results import load_average, markers, write_section
 
 ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "RESULTS.md"
@@ -43,10 +43,6 @@ def _run(command: list[str], cwd: Path) -> tuple[int, float, str]:
                           stdin=subprocess.DEVNULL)
     output = done.stdout + done.stderr
     return done.returncode, time.perf_counter() - start, output
-
-
-def _load() -> str:
-    return ", ".join(f"{x:.1f}" for x in os.getloadavg())
 
 
 def measure(clone: Path) -> tuple[list[tuple[str, float, str]], dict[str, int], bool]:
@@ -85,14 +81,15 @@ def measure(clone: Path) -> tuple[list[tuple[str, float, str]], dict[str, int], 
     return rows, layers, ok
 
 
-def report(rows, layers, commit: str, before: str, after: str) -> str:
+def report(rows, layers, commit: str, before: tuple[float, ...],
+           after: tuple[float, ...]) -> str:
     lines = [
         BEGIN,
         "## Build and test timings",
         "",
         f"Machine: {platform.processor() or platform.machine()}, {os.cpu_count()} logical CPUs; "
         f"Python {platform.python_version()}. Date: {_dt.date.today().isoformat()}. Commit "
-        f"{commit}, cloned fresh. Load average (1, 5, 15 min) before: {before}; after: {after} "
+        f"{commit}, cloned fresh. {load_average(before, after)} "
         "(other jobs may share the cores). Produced by `python -m tools.time_build`.",
         "",
         "| command | wall time (s) | result |",
@@ -120,9 +117,9 @@ def main(argv: list[str] | None = None) -> int:
     with tempfile.TemporaryDirectory(prefix="wheelkin-timing-") as tmp:
         clone = Path(tmp) / "repo"
         subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
-        before = _load()
+        before = os.getloadavg()
         rows, layers, ok = measure(clone)
-        after = _load()
+        after = os.getloadavg()
     section = report(rows, layers, commit, before, after)
     print(section)
     if not args.no_write:
