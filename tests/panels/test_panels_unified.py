@@ -1,5 +1,5 @@
-"""The unified chapter's panels: the sweep, the tour's twists, and the constraint view marks
-exactly the wheels that must slide."""
+"""The unified chapter's panels: the tour's twists, and the constraint view marks exactly the
+wheels that must slide (every slider value of every panel: tests/panels/test_panel_sweep.py)."""
 
 from __future__ import annotations
 
@@ -7,23 +7,12 @@ import numpy as np
 import pytest
 
 
-def test_panel_sweeps_without_raising_and_the_animations_have_their_frames():
+def test_the_tour_animations_have_their_frames():
     import matplotlib
 
     matplotlib.use("Agg")
-    from wheelkin.widgets import all_panels, slider_values
     from wheelkin.widgets import unified as panels
 
-    factories = {n: f for n, f in all_panels().items() if n.startswith("unified.")}
-    assert factories
-    for factory in factories.values():
-        panel = factory()
-        try:
-            for cname, control in panel.controls.items():
-                for value in slider_values(control, n=3):
-                    panel.redraw(**{cname: value})
-        finally:
-            panel.close()
     twists = panels.tour_twists(40)
     assert twists.shape == (40, 3)
     np.testing.assert_allclose(np.hypot(twists[:20, 0], twists[:20, 1]), 0.3)
