@@ -58,6 +58,7 @@ import sys
 import tempfile
 import time
 import unicodedata
+from collections.abc import Iterator
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -385,6 +386,18 @@ def _grade(path: Path, result: SubmissionResult, run: Run, slot: int, judges: Ju
                                                counted[name], ran))
 
 
+def _reported(outcome: jail.Outcome) -> Iterator[dict]:
+    """The JSON objects a sandbox reported, one a line; any other line (text that is no JSON,
+    or JSON that is not an object) is passed over."""
+    for line in outcome.report:
+        try:
+            item = json.loads(line)
+        except ValueError:
+            continue
+        if isinstance(item, dict):
+            yield item
+
+
 def _run_notebook(run: Run, slot: int, cells, result: SubmissionResult) -> dict:
     """Run the notebook in its sandbox; return ``{cell index: "all" | line}`` of what ran."""
     limits = jail.Limits(seconds=run.assignment.time_limit, memory=NOTEBOOK_MEMORY,
@@ -400,13 +413,7 @@ def _run_notebook(run: Run, slot: int, cells, result: SubmissionResult) -> dict:
     report: dict[int, int | str] = {}
     done = False
     indices = {c.index for c in cells}
-    for line in outcome.report:
-        try:
-            item = json.loads(line)
-        except ValueError:
-            continue
-        if not isinstance(item, dict):
-            continue
+    for item in _reported(outcome):
         if item.get("done") is True:
             done = True
         cell, how = item.get("cell"), item.get("ran")
@@ -446,13 +453,7 @@ def _call(run: Run, slot: int, job: dict, library: str | None,
     answers: dict[int, dict] = {}
     said: dict = {"setup": [], "function": None, "done": False}
     count = len(job["cases"])
-    for line in outcome.report:
-        try:
-            item = json.loads(line)
-        except ValueError:
-            continue
-        if not isinstance(item, dict):
-            continue
+    for item in _reported(outcome):
         if item.get("done") is True:
             said["done"] = True
         elif "case" in item:
