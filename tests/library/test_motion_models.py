@@ -191,15 +191,21 @@ def test_sampler_histogram_matches_the_density():
     assert chi2 < stats.chi2.ppf(0.999, dof), (chi2, dof)
 
 
-def test_sampler_is_table_5_6_with_the_draws_in_order():
-    a = [0.05, 0.02, 0.04, 0.01]
-    got = M.sample_motion_model_odometry(PREV, ODO, ODO_PREV, a, 5, np.random.default_rng(7))
-    z = np.random.default_rng(7).standard_normal((3, 5))
+def _table_5_6_motion(a, z):
+    """The noisy (rot1, trans, rot2) of Probabilistic Robotics' Table 5.6, by hand, for ODO's
+    motion (0.3, 0.5, -0.2) and the standard normal draws ``z`` (one row each, in order)."""
     d1, dt, d2 = 0.3, 0.5, -0.2
     s1 = math.sqrt(a[0] * d1**2 + a[1] * dt**2)
     st = math.sqrt(a[2] * dt**2 + a[3] * (d1**2 + d2**2))
     s2 = math.sqrt(a[0] * d2**2 + a[1] * dt**2)
-    h1, ht, h2 = d1 - s1 * z[0], dt - st * z[1], d2 - s2 * z[2]
+    return d1 - s1 * z[0], dt - st * z[1], d2 - s2 * z[2]
+
+
+def test_sampler_is_table_5_6_with_the_draws_in_order():
+    a = [0.05, 0.02, 0.04, 0.01]
+    got = M.sample_motion_model_odometry(PREV, ODO, ODO_PREV, a, 5, np.random.default_rng(7))
+    z = np.random.default_rng(7).standard_normal((3, 5))
+    h1, ht, h2 = _table_5_6_motion(a, z)
     want = np.column_stack([PREV[0] + ht * np.cos(PREV[2] + h1),
                             PREV[1] + ht * np.sin(PREV[2] + h1), PREV[2] + h1 + h2])
     assert got == pytest.approx(want, abs=1e-12)
@@ -286,11 +292,7 @@ def test_a_particle_set_moves_each_particle_by_one_sample():
     got = M.sample_motion_model_odometry(particles, ODO, ODO_PREV, a, 6,
                                          np.random.default_rng(10))
     z = np.random.default_rng(10).standard_normal((3, 6))
-    d1, dt, d2 = 0.3, 0.5, -0.2
-    s1 = math.sqrt(a[0] * d1**2 + a[1] * dt**2)
-    st = math.sqrt(a[2] * dt**2 + a[3] * (d1**2 + d2**2))
-    s2 = math.sqrt(a[0] * d2**2 + a[1] * dt**2)
-    h1, ht, h2 = d1 - s1 * z[0], dt - st * z[1], d2 - s2 * z[2]
+    h1, ht, h2 = _table_5_6_motion(a, z)
     heading = particles[:, 2] + h1
     want = np.column_stack([particles[:, 0] + ht * np.cos(heading),
                             particles[:, 1] + ht * np.sin(heading), heading + h2])
