@@ -60,6 +60,7 @@ import time
 import unicodedata
 from collections.abc import Iterator
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -703,9 +704,7 @@ def grade_folder(folder: Path, assignment: Assignment, out: Path, jobs: int = 2,
         result = SubmissionResult(student, entry.name, results_folder)
         if entry.kind != "file":
             result.status = not_graded(entry)
-            text = f"{result.status}"
-            result.verdicts = [Verdict(n, p, 0.0, f"✘ {n}: {text}", f"✘ {n}: {text}")
-                               for n, p in assignment.exercises]
+            result.verdicts = _nothing_graded(assignment, result.status)
             results[entry.name] = result
             write_result(result, assignment, out, secret_id)
             log(_line(result, assignment))
@@ -717,14 +716,9 @@ def grade_folder(folder: Path, assignment: Assignment, out: Path, jobs: int = 2,
     write_csv([results[e.name] for e in items if e.name in results], assignment, out)
     if not todo:
         return [results[e.name] for e in items]
-    work = Path(tempfile.mkdtemp(prefix="wheelkin-grade-"))
-    (work / "jobs").mkdir()
-    uid_base, lock = jail.claim_uids()
-    try:
-        run = prepare(assignment, secret, work, uid_base)
-        if lock is not None:
-            log(f"grade: sandbox uids {uid_base}..{uid_base + jail.BLOCK - 1}")
-        (work / "jobs").chmod(0o755)
+    with _grading_run(assignment, secret) as (run, claimed):
+        if claimed:
+            log(f"grade: sandbox uids {run.uid_base}..{run.uid_base + jail.BLOCK - 1}")
         context = multiprocessing.get_context("fork")
         slots = context.Queue()
         workers = max(1, min(jobs, len(todo)))
@@ -742,11 +736,30 @@ def grade_folder(folder: Path, assignment: Assignment, out: Path, jobs: int = 2,
                 write_csv([results[e.name] for e in items if e.name in results], assignment,
                           out)
                 log(_line(result, assignment))
+    return [results[e.name] for e in items]
+
+
+def _nothing_graded(assignment: Assignment, why: str) -> list[Verdict]:
+    """Every exercise of the assignment at 0 points, for ``why`` (the submission was not run)."""
+    return [Verdict(n, p, 0.0, f"✘ {n}: {why}", f"✘ {n}: {why}") for n, p in assignment.exercises]
+
+
+@contextmanager
+def _grading_run(assignment: Assignment, secret: bytes) -> Iterator[tuple[Run, bool]]:
+    """A grading run's work folder (prepared, its jobs folder open to the sandboxes) and block
+    of sandbox uids: ``(run, whether the block was claimed by a lock)``; the folder is removed
+    and the block given back when the run ends."""
+    work = Path(tempfile.mkdtemp(prefix="wheelkin-grade-"))
+    (work / "jobs").mkdir()
+    uid_base, lock = jail.claim_uids()
+    try:
+        run = prepare(assignment, secret, work, uid_base)
+        (work / "jobs").chmod(0o755)
+        yield run, lock is not None
     finally:
         shutil.rmtree(work, ignore_errors=True)
         if lock is not None:
             os.close(lock)
-    return [results[e.name] for e in items]
 
 
 def _line(result: SubmissionResult, assignment: Assignment) -> str:
@@ -793,24 +806,14 @@ def gradescope_run(root: Path, assignment: Assignment) -> int:
     secret_id = hashlib.sha256(secret).hexdigest()[:12]
     if path is None:
         result.status = problem
-        result.verdicts = [Verdict(n, p, 0.0, f"✘ {n}: {problem}", f"✘ {n}: {problem}")
-                           for n, p in assignment.exercises]
+        result.verdicts = _nothing_graded(assignment, problem)
     else:
-        work = Path(tempfile.mkdtemp(prefix="wheelkin-grade-"))
-        (work / "jobs").mkdir()
-        uid_base, lock = jail.claim_uids()
-        try:
-            run = prepare(assignment, secret, work, uid_base)
-            (work / "jobs").chmod(0o755)
+        with _grading_run(assignment, secret) as (run, _claimed):
             judges = Judges(SRC)
             try:
                 grade_file(path, result, run, slot=0, judges=judges)
             finally:
                 judges.close()
-        finally:
-            shutil.rmtree(work, ignore_errors=True)
-            if lock is not None:
-                os.close(lock)
     _atomic_write(results_dir / "results.json",
                   json.dumps(gradescope(result, assignment, secret_id), indent=1,
                              ensure_ascii=False) + "\n")
