@@ -130,15 +130,27 @@ def _pack(cls, columns, scalar: bool):
     return np.stack([np.asarray(c, dtype=float) for c in columns], axis=-1)
 
 
+def _is_one(value: object, cls: type) -> bool:
+    """Whether ``value`` is one record of ``cls``: an instance, or a plain ``tuple`` of three
+    numbers (``(x, y, theta)`` given where a pose is meant gives a Pose back). A list or an
+    array of shape (3,) is an array and gives an array; another record is neither."""
+    if isinstance(value, cls):
+        return True
+    return (type(value) is tuple and len(value) == 3
+            and all(isinstance(c, int | float | np.integer | np.floating)
+                    and not isinstance(c, bool | np.bool_) for c in value))
+
+
 def _unpack(name: str, value, cls):
-    """(columns, is_record) from a Pose/Twist or an array (..., 3)."""
+    """(columns, is_record) from a Pose/Twist (or a tuple of three numbers) or an array
+    (..., 3)."""
     if isinstance(value, cls):
         return list(value.as_array()), True
     if isinstance(value, Pose | Twist):
         raise ValueError(f"{name} must be a {cls.__name__} or an array of shape (..., 3), "
                          f"got a {type(value).__name__}")
     arr = V.shaped(name, value, (3,))
-    return [arr[..., 0], arr[..., 1], arr[..., 2]], False
+    return [arr[..., 0], arr[..., 1], arr[..., 2]], _is_one(value, cls)
 
 
 def _unpack_out(columns, is_record: bool, cls):

@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors
-from wheelkin._records import Pose, Twist, _no_negative_zero, _pack
+from wheelkin._records import Pose, Twist, _is_one, _no_negative_zero, _pack
 
 # The sources' converters moved to wheelkin.sources; importable from here as before.
 from wheelkin.sources import FirmwarePose as FirmwarePose
@@ -285,7 +285,7 @@ def se2_exp(twist: Twist | ArrayLike, dt: float = 1.0) -> Pose | NDArray[np.floa
     >>> print(f"{d.x:.6f} {d.y:.6f} {d.theta:.6f}")
     1.000000 1.000000 1.570796
     """
-    is_twist = isinstance(twist, Twist)
+    is_twist = _is_one(twist, Twist)
     vx, vy, w = _twist_columns("twist", twist)
     t = V.finite("dt", dt)
     with np.errstate(all="ignore"):
@@ -334,7 +334,7 @@ def se2_log(delta: Pose | ArrayLike, dt: float = 1.0) -> Twist | np.ndarray:
     >>> se2_log(Pose(1.0, 1.0, math.pi / 2))
     Twist(vx=1.5707963267948966, vy=0.0, omega=1.5707963267948966)
     """
-    is_pose = isinstance(delta, Pose)
+    is_pose = _is_one(delta, Pose)
     dx, dy, phi = (np.asarray(c, dtype=float) for c in _pose_columns("delta", delta))
     t = V.positive("dt", dt)
     if np.any(np.abs(phi) >= 2 * math.pi):
@@ -458,7 +458,7 @@ def pose_rate(theta: ArrayLike, twist: Twist | ArrayLike) -> PoseRate | np.ndarr
     c, s = np.cos(th), np.sin(th)
     out = [_no_negative_zero(np.asarray(o, dtype=float))
            for o in (vx * c - vy * s, vx * s + vy * c, w + 0.0 * th)]
-    if out[0].ndim == 0 and isinstance(twist, Twist):
+    if out[0].ndim == 0 and _is_one(twist, Twist):
         return PoseRate(*(float(o) for o in out))
     return np.stack(out, axis=-1)
 
@@ -488,7 +488,7 @@ def compose(pose: Pose | ArrayLike, delta: Pose | ArrayLike) -> Pose | NDArray[n
     >>> print(f"{p.x:.6f} {p.y:.6f} {p.theta:.6f}")
     1.000000 2.000000 1.570796
     """
-    both = isinstance(pose, Pose) and isinstance(delta, Pose)
+    both = _is_one(pose, Pose) and _is_one(delta, Pose)
     x, y, th = _pose_columns("pose", pose)
     dx, dy, dth = _pose_columns("delta", delta)
     _together("pose", x, "delta", dx)
@@ -525,7 +525,7 @@ def inverse(pose: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     >>> np.round(compose(p, inverse(p)).as_array(), 12)
     array([0., 0., 0.])
     """
-    is_pose = isinstance(pose, Pose)
+    is_pose = _is_one(pose, Pose)
     x, y, th = _pose_columns("pose", pose)
     c, s = np.cos(th), np.sin(th)
     out = (-c * x - s * y, s * x - c * y, wrap_angle(-np.asarray(th)))
@@ -543,7 +543,7 @@ def relative(pose_from: Pose | ArrayLike, pose_to: Pose | ArrayLike) -> Pose | N
     >>> print(f"{d.x:.6f} {d.y:.6f} {d.theta:.6f}")  # 2 m straight ahead
     2.000000 0.000000 0.000000
     """
-    both = isinstance(pose_from, Pose) and isinstance(pose_to, Pose)
+    both = _is_one(pose_from, Pose) and _is_one(pose_to, Pose)
     x0, y0, th0 = _pose_columns("pose_from", pose_from)
     x1, y1, th1 = _pose_columns("pose_to", pose_to)
     _together("pose_from", x0, "pose_to", x1)

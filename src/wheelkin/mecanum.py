@@ -59,6 +59,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors, shift_twist
+from wheelkin._records import _is_one
 from wheelkin.frames import Pose, Twist, wrap_angle
 from wheelkin.units import FOOT
 
@@ -737,7 +738,7 @@ def go_to_point_twist(pose: Pose | ArrayLike, goal: Pose | ArrayLike, speed: flo
         out = np.stack([(a * ex + b * ey) / norm / step, (-b * ex + a * ey) / norm / step,
                         phi / step], axis=-1)
     out = np.where(arrived[..., None], 0.0, out) + 0.0
-    if isinstance(pose, Pose) and isinstance(goal, Pose):
+    if _is_one(pose, Pose) and _is_one(goal, Pose):
         return Twist(*out.tolist())
     return out
 

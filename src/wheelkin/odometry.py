@@ -82,6 +82,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors, arc_step, c_div
+from wheelkin._records import _is_one
 from wheelkin.frames import Pose, wrap_angle
 
 # Thrun's motion models live in wheelkin.motion_models; the chapter imports them from here.
@@ -294,7 +295,7 @@ def pose_update(
     with np.errstate(all="ignore"):
         out = _step(p, ds, dth, method)
     out = V.finite_result("pose, distance and dtheta", out)
-    return Pose(*out.tolist()) if isinstance(pose, Pose) and out.ndim == 1 else out
+    return Pose(*out.tolist()) if _is_one(pose, Pose) and out.ndim == 1 else out
 
 
 def _step(p: np.ndarray, ds: np.ndarray, dth: np.ndarray, method: str) -> np.ndarray:

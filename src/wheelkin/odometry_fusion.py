@@ -33,6 +33,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_step
+from wheelkin._records import _is_one
 from wheelkin.frames import Pose
 from wheelkin.odometry_uncertainty import _jacobians, propagate_covariance, step_jacobians
 
@@ -166,7 +167,7 @@ def ekf_step(pose: Pose | ArrayLike, covariance: ArrayLike, delta_left: float,
     after, post, innovation, s = _update(np.asarray(predicted.pose, dtype=float),
                                          predicted.covariance, cross, float(sigma[2, 2]),
                                          float(before[2]), z, r)
-    out = Pose(*after.tolist()) if isinstance(pose, Pose) else after
+    out = Pose(*after.tolist()) if _is_one(pose, Pose) else after
     return FusionStep(out, post, innovation, s)
 
 

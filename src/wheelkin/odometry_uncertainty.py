@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike
 from wheelkin import _validate as V
 from wheelkin._kernels import SERIES_THRESHOLD as _ARC_THRESHOLD
 from wheelkin._kernels import arc_factors, arc_step
+from wheelkin._records import _is_one
 from wheelkin.frames import Pose
 
 __all__ = [
@@ -289,7 +290,7 @@ def propagate_covariance(pose: ArrayLike, covariance: ArrayLike, delta_left: flo
     q = np.diag([kl * abs(left), kr * abs(right)])
     new = _covariance_step(f_pose, sigma, f_wheels @ q @ f_wheels.T)
     x, y, theta = arc_step(float(p[0]), float(p[1]), float(p[2]), ds, dth)
-    after = Pose(x, y, theta) if isinstance(pose, Pose) else np.array([x, y, theta])
+    after = Pose(x, y, theta) if _is_one(pose, Pose) else np.array([x, y, theta])
     return PoseCovariance(after, new)
 
 
