@@ -10,14 +10,18 @@ gives a record back, an array an array.
 from __future__ import annotations
 
 import functools
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, TypeAlias
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
 
 __all__: list[str] = []
+
+#: Arguments that give an array back in the overloads of the array-or-scalar functions: an
+#: array or a list (a float gives a float, a Pose or a tuple of three numbers a Pose).
+Stack: TypeAlias = NDArray[Any] | list[Any]
 
 
 class Pose(NamedTuple):

@@ -33,12 +33,13 @@ import functools
 import inspect
 import math
 from collections.abc import Callable
-from typing import NamedTuple, ParamSpec, TypeVar
+from typing import NamedTuple, ParamSpec, TypeVar, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
+from wheelkin._records import Stack
 from wheelkin.frames import Twist
 
 __all__ = [
@@ -503,6 +504,10 @@ def minimum_radius(max_steering_angle: ArrayLike, *, wheelbase: float,
     return _out(V.finite_result("max_steering_angle, wheelbase and track_width", out))
 
 
+@overload
+def pure_pursuit_curvature(x: float, y: float) -> float: ...  # type: ignore[overload-overlap]
+@overload
+def pure_pursuit_curvature(x: float | Stack, y: float | Stack) -> NDArray[np.float64]: ...
 def pure_pursuit_curvature(x: ArrayLike, y: ArrayLike) -> float | NDArray[np.float64]:
     r"""Curvature of the circle through the rear-axle midpoint, tangent to the heading, that
     passes through the look-ahead point ``(x, y)`` (rear-axle frame).

@@ -50,7 +50,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -58,6 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import c_div, diff_drive_wheel_speeds
+from wheelkin._records import Stack
 from wheelkin.units import RADON_ULZER_STEPS_PER_M
 
 __all__ = [
@@ -508,6 +509,10 @@ def wheel_speeds_steps_as_printed(
 # Integer arithmetic, as a microcontroller does it
 # --------------------------------------------------------------------------------------------
 
+@overload
+def wrap_int(values: float, bits: int = 32) -> int: ...
+@overload
+def wrap_int(values: Stack, bits: int = 32) -> NDArray[np.int64]: ...
 def wrap_int(values: ArrayLike, bits: int = 32) -> int | NDArray[np.int64]:
     """Two's-complement wraparound of integers to ``bits`` bits, as a C signed integer wraps.
 
@@ -544,6 +549,10 @@ def wrap_int(values: ArrayLike, bits: int = 32) -> int | NDArray[np.int64]:
     return int(out) if out.ndim == 0 else out
 
 
+@overload
+def c_divide(numerator: float, denominator: float) -> int: ...  # type: ignore[overload-overlap]
+@overload
+def c_divide(numerator: float | Stack, denominator: float | Stack) -> NDArray[np.int64]: ...
 def c_divide(numerator: ArrayLike, denominator: ArrayLike) -> int | NDArray[np.int64]:
     """Integer division truncating toward zero, as C's ``/`` on integers does.
 
@@ -795,6 +804,10 @@ def wheel_speeds_steps_int32(v_steps_per_s: ArrayLike, omega_mrad_per_s: ArrayLi
 # Speedometer
 # --------------------------------------------------------------------------------------------
 
+@overload
+def speed_resolution(window: float, steps_per_m: float) -> float: ...
+@overload
+def speed_resolution(window: Stack, steps_per_m: float) -> NDArray[np.float64]: ...
 def speed_resolution(window: ArrayLike, steps_per_m: float) -> float | NDArray[np.float64]:
     r"""Speed resolution of counting encoder steps over a time window: one step per window.
 
@@ -824,6 +837,12 @@ def speed_resolution(window: ArrayLike, steps_per_m: float) -> float | NDArray[n
     return _out(V.finite_result("window and steps_per_m", out))
 
 
+@overload
+def time_to_count(min_steps: float, speed: float,
+                  steps_per_m: float) -> float: ...
+@overload
+def time_to_count(min_steps: float, speed: Stack,
+                  steps_per_m: float) -> NDArray[np.float64]: ...
 def time_to_count(min_steps: float, speed: ArrayLike,
                   steps_per_m: float) -> float | NDArray[np.float64]:
     r"""Time a wheel at ``speed`` takes to turn ``min_steps`` encoder steps.

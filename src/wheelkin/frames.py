@@ -39,7 +39,7 @@ Twist(vx=1.0, vy=0.0, omega=0.0)
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import NamedTuple, TypeAlias, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -47,7 +47,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors
-from wheelkin._records import Pose, Twist, _is_one, _no_negative_zero, _pack
+from wheelkin._records import Pose, Stack, Twist, _is_one, _no_negative_zero, _pack
 
 # The sources' converters moved to wheelkin.sources; importable from here as before.
 from wheelkin.sources import FirmwarePose as FirmwarePose
@@ -100,11 +100,21 @@ class HalfTurn(NamedTuple):
     sign: float
 
 
+
+#: One pose or twist as a record: a Pose (Twist) or a plain tuple of three numbers; the
+#: functions below return a record for it (their overloads say so to a type checker).
+OnePose: TypeAlias = Pose | tuple[float, float, float]
+OneTwist: TypeAlias = Twist | tuple[float, float, float]
+
 # --------------------------------------------------------------------------------------------
 # Angles, ICR, point velocities
 # --------------------------------------------------------------------------------------------
 
 
+@overload
+def wrap_angle(angle: float) -> float: ...
+@overload
+def wrap_angle(angle: Stack | tuple[float, ...]) -> NDArray[np.float64]: ...
 def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
     r"""Wrap an angle (rad) to :math:`(-\pi, \pi]`; vectorised.
 
@@ -246,6 +256,10 @@ def icr_array(twists: ArrayLike) -> np.ndarray:
 # --------------------------------------------------------------------------------------------
 
 
+@overload
+def se2_exp(twist: OneTwist, dt: float = 1.0) -> Pose: ...
+@overload
+def se2_exp(twist: Stack, dt: float = 1.0) -> NDArray[np.float64]: ...
 def se2_exp(twist: Twist | ArrayLike, dt: float = 1.0) -> Pose | NDArray[np.float64]:
     r"""The body-frame displacement after holding ``twist`` constant for ``dt`` seconds.
 
@@ -297,6 +311,10 @@ def se2_exp(twist: Twist | ArrayLike, dt: float = 1.0) -> Pose | NDArray[np.floa
     return _pack(Pose, (dx, dy, dth), is_twist)
 
 
+@overload
+def se2_log(delta: OnePose, dt: float = 1.0) -> Twist: ...
+@overload
+def se2_log(delta: Stack, dt: float = 1.0) -> NDArray[np.float64]: ...
 def se2_log(delta: Pose | ArrayLike, dt: float = 1.0) -> Twist | np.ndarray:
     r"""The constant body twist that moves the body by ``delta`` in ``dt`` seconds: the inverse
     of :func:`se2_exp`.
@@ -463,6 +481,12 @@ def pose_rate(theta: ArrayLike, twist: Twist | ArrayLike) -> PoseRate | np.ndarr
     return np.stack(out, axis=-1)
 
 
+@overload
+def compose(pose: OnePose, delta: OnePose) -> Pose: ...
+@overload
+def compose(pose: OnePose | Stack, delta: Stack) -> NDArray[np.float64]: ...
+@overload
+def compose(pose: Stack, delta: OnePose | Stack) -> NDArray[np.float64]: ...
 def compose(pose: Pose | ArrayLike, delta: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     r"""The pose reached from ``pose`` by the body-frame displacement ``delta``: pose ⊕ delta.
 
@@ -516,6 +540,10 @@ def _pose_columns(name: str, pose):
     return arr[..., 0], arr[..., 1], arr[..., 2]
 
 
+@overload
+def inverse(pose: OnePose) -> Pose: ...
+@overload
+def inverse(pose: Stack) -> NDArray[np.float64]: ...
 def inverse(pose: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     """The inverse pose: ``compose(pose, inverse(pose))`` is the identity.
 
@@ -532,6 +560,12 @@ def inverse(pose: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], is_pose)
 
 
+@overload
+def relative(pose_from: OnePose, pose_to: OnePose) -> Pose: ...
+@overload
+def relative(pose_from: OnePose | Stack, pose_to: Stack) -> NDArray[np.float64]: ...
+@overload
+def relative(pose_from: Stack, pose_to: OnePose | Stack) -> NDArray[np.float64]: ...
 def relative(pose_from: Pose | ArrayLike, pose_to: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     """The displacement of ``pose_to`` seen from ``pose_from`` (in its body frame).
 

@@ -51,7 +51,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple
+from typing import NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -59,7 +59,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors, shift_twist
-from wheelkin._records import _is_one
+from wheelkin._records import Stack, _is_one
 from wheelkin.frames import Pose, Twist, wrap_angle
 from wheelkin.units import FOOT
 
@@ -352,6 +352,10 @@ def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.
     return rates @ forward_matrix(g).T
 
 
+@overload
+def fighting_component(wheel_rates: float) -> float: ...
+@overload
+def fighting_component(wheel_rates: Stack) -> NDArray[np.float64]: ...
 def fighting_component(wheel_rates: ArrayLike) -> float | NDArray[np.float64]:
     r"""How much of the wheel rates is the no-motion pattern (+1, +1, -1, -1), rad/s.
 
@@ -382,6 +386,12 @@ def fighting_component(wheel_rates: ArrayLike) -> float | NDArray[np.float64]:
     return V.scalar_or_array(rates @ FIGHTING_PATTERN / 4.0)
 
 
+@overload
+def max_rim_speed(vx: float, vy: float, omega: float,  # type: ignore[overload-overlap]
+                  geometry: MecanumGeometry) -> float: ...
+@overload
+def max_rim_speed(vx: float | Stack, vy: float | Stack, omega: float | Stack,
+                  geometry: MecanumGeometry) -> NDArray[np.float64]: ...
 def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
                   geometry: MecanumGeometry) -> float | NDArray[np.float64]:
     r"""The fastest wheel's rim speed :math:`r_w\max_i|\dot\varphi_i|`, m/s, for a body twist.
@@ -405,6 +415,13 @@ def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     return V.scalar_or_array(np.abs(vx_a) + np.abs(vy_a) * g.lateral_factor + np.abs(w_a) * g.k)
 
 
+@overload
+def grip_usage(accel_x: float, accel_y: float, mu: float, roller_angle: float = math.pi / 4,  # type: ignore[overload-overlap]
+               gravity: float = 9.81) -> float: ...
+@overload
+def grip_usage(accel_x: float | Stack, accel_y: float | Stack, mu: float,
+               roller_angle: float = math.pi / 4,
+               gravity: float = 9.81) -> NDArray[np.float64]: ...
 def grip_usage(accel_x: ArrayLike, accel_y: ArrayLike, mu: float, roller_angle: float = math.pi / 4,
                gravity: float = 9.81) -> float | NDArray[np.float64]:
     r"""Share of the tyres' grip that a body acceleration needs (above 1: the wheels slip).
@@ -569,6 +586,10 @@ def desaturate(wheel_rates: ArrayLike, max_rate: float) -> np.ndarray:
     return _kernels.desaturate(rates, V.positive("max_rate", max_rate))
 
 
+@overload
+def circle_speed(radius: float, lap_time: float) -> float: ...  # type: ignore[overload-overlap]
+@overload
+def circle_speed(radius: float | Stack, lap_time: float | Stack) -> NDArray[np.float64]: ...
 def circle_speed(radius: ArrayLike, lap_time: ArrayLike) -> float | NDArray[np.float64]:
     r"""Speed along a circle driven once in ``lap_time``: :math:`v = 2\pi|R|/T`, m/s.
 

@@ -40,7 +40,7 @@ SI units (m, rad), REP-103; a pose is (x, y, θ).
 from __future__ import annotations
 
 import math
-from typing import Literal, NamedTuple
+from typing import Literal, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -48,6 +48,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_step
 from wheelkin._kernels import wrap_angle as _wrap
+from wheelkin._records import Stack
 from wheelkin.frames import Pose, Twist
 
 __all__ = [
@@ -149,6 +150,18 @@ def _normal(diff, var):
     return _INV_SQRT_2PI / np.sqrt(var) * np.exp(-0.5 * diff * diff / var)
 
 
+@overload
+def motion_model_odometry(pose: Pose | ArrayLike, previous_pose: Pose | ArrayLike,
+                          odometry: Pose | ArrayLike, previous_odometry: Pose | ArrayLike,
+                          alphas: float, *,
+                          density_of: Literal["motion", "pose"] = "motion",
+                          ) -> float: ...
+@overload
+def motion_model_odometry(pose: Pose | ArrayLike, previous_pose: Pose | ArrayLike,
+                          odometry: Pose | ArrayLike, previous_odometry: Pose | ArrayLike,
+                          alphas: Stack, *,
+                          density_of: Literal["motion", "pose"] = "motion",
+                          ) -> NDArray[np.float64]: ...
 def motion_model_odometry(pose: Pose | ArrayLike, previous_pose: Pose | ArrayLike,
                           odometry: Pose | ArrayLike, previous_odometry: Pose | ArrayLike,
                           alphas: ArrayLike, *,

@@ -49,12 +49,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from typing import overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
 from wheelkin import frames, unified
+from wheelkin._records import Stack
 
 __all__ = [
     "bracket_manoeuvre",
@@ -849,6 +851,10 @@ def parallel_parking(pose: ArrayLike, epsilon: float, max_curvature: float
     return out + 0.0
 
 
+@overload
+def parking_shift(epsilon: float, max_curvature: float) -> float: ...
+@overload
+def parking_shift(epsilon: Stack, max_curvature: float) -> NDArray[np.float64]: ...
 def parking_shift(epsilon: ArrayLike, max_curvature: float) -> float | NDArray[np.float64]:
     r"""How far :func:`parallel_parking` moves the car sideways (to its left), exactly:
 

@@ -74,7 +74,7 @@ them: ``wheelkin.odometry.motion_model_odometry`` (the density of table 5.5),
 from __future__ import annotations
 
 import math
-from typing import Literal, NamedTuple
+from typing import Literal, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -82,7 +82,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_factors, arc_step, c_div
-from wheelkin._records import _is_one
+from wheelkin._records import Stack, _is_one
 from wheelkin.frames import Pose, wrap_angle
 
 # Thrun's motion models live in wheelkin.motion_models; the chapter imports them from here.
@@ -212,6 +212,10 @@ def body_increments(increments: ArrayLike, steps_per_mm: float,
     return BodyIncrements((left + right) / (2.0 * k), (right - left) / (k * w))
 
 
+@overload
+def chord_factor(dtheta: float) -> float: ...
+@overload
+def chord_factor(dtheta: Stack) -> NDArray[np.float64]: ...
 def chord_factor(dtheta: ArrayLike) -> float | NDArray[np.float64]:
     r"""Ratio of the chord to the arc for a turn of :math:`\Delta\theta`: sin(u)/u, u = Δθ/2.
 

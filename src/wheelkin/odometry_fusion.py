@@ -26,14 +26,14 @@ SI units (m, rad), REP-103; :math:`W` the track width. Headings are not wrapped.
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_step
-from wheelkin._records import _is_one
+from wheelkin._records import Stack, _is_one
 from wheelkin.frames import Pose
 from wheelkin.odometry_uncertainty import _jacobians, propagate_covariance, step_jacobians
 
@@ -268,6 +268,10 @@ def ekf_path(pose: Pose | ArrayLike, covariance: ArrayLike, delta_left: ArrayLik
     return FusionPath(poses, covs, innov, svar)
 
 
+@overload
+def nees(error: float, covariance: float) -> float: ...  # type: ignore[overload-overlap]
+@overload
+def nees(error: float | Stack, covariance: float | Stack) -> NDArray[np.float64]: ...
 def nees(error: ArrayLike, covariance: ArrayLike) -> float | NDArray[np.float64]:
     r"""The normalised estimation error squared, :math:`\epsilon = e^\mathsf{T}\Sigma^{-1}e`.
 

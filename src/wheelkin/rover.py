@@ -61,13 +61,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Literal, NamedTuple, cast
+from typing import Literal, NamedTuple, cast, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
 from wheelkin import sources
+from wheelkin._records import Stack
 from wheelkin.frames import Twist
 from wheelkin.units import INCH
 
@@ -451,6 +452,14 @@ def corner_angles(radius: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
     return np.where(straight[..., None], 0.0, angles)
 
 
+@overload
+def centre_speed(radius: float, speed: float, geometry: RoverGeometry = OSR_GEOMETRY,  # type: ignore[overload-overlap]
+                 straight_threshold: float | None = None, *,
+                 max_corner_angle: float = HARD_STOP) -> float: ...
+@overload
+def centre_speed(radius: float | Stack, speed: float | Stack,
+                 geometry: RoverGeometry = OSR_GEOMETRY, straight_threshold: float | None = None, *,
+                 max_corner_angle: float = HARD_STOP) -> NDArray[np.float64]: ...
 def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = OSR_GEOMETRY,
                  straight_threshold: float | None = None, *,
                  max_corner_angle: float = HARD_STOP) -> float | NDArray[np.float64]:
@@ -481,6 +490,12 @@ def centre_speed(radius: ArrayLike, speed: ArrayLike, geometry: RoverGeometry = 
     return V.scalar_or_array(x * np.where(straight, 1.0, rr / (rr + g.d4)))
 
 
+@overload
+def command_to_radius(command: float, *, mapping: str = "radius",
+                      geometry: RoverGeometry = OSR_GEOMETRY) -> float: ...
+@overload
+def command_to_radius(command: Stack, *, mapping: str = "radius",
+                      geometry: RoverGeometry = OSR_GEOMETRY) -> NDArray[np.float64]: ...
 def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
                       geometry: RoverGeometry = OSR_GEOMETRY) -> float | NDArray[np.float64]:
     """The turning radius (in, document sign: > 0 right) for a joystick steering command.
@@ -541,6 +556,10 @@ def command_to_radius(command: ArrayLike, *, mapping: str = "radius",
     return float(out) if out.ndim == 0 else out
 
 
+@overload
+def radius_to_command(radius: float) -> float: ...
+@overload
+def radius_to_command(radius: Stack) -> NDArray[np.float64]: ...
 def radius_to_command(radius: ArrayLike) -> float | NDArray[np.float64]:
     r"""The joystick command whose linear-in-radius mapping gives ``radius`` (inverse of
     :func:`command_to_radius` with ``mapping="radius"``).

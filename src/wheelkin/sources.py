@@ -42,7 +42,7 @@ Twist(vx=0.0, vy=-0.3048, omega=0.0)
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -51,6 +51,7 @@ from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._records import (
     Pose,
+    Stack,
     Twist,
     _components,
     _no_negative_zero,
@@ -125,6 +126,10 @@ def _wrap(angle: np.ndarray) -> float | NDArray[np.float64]:
 # --------------------------------------------------------------------------------------------
 
 
+@overload
+def rover_radius_to_ours(radius_in: float) -> float: ...
+@overload
+def rover_radius_to_ours(radius_in: Stack) -> NDArray[np.float64]: ...
 def rover_radius_to_ours(radius_in: ArrayLike) -> float | NDArray[np.float64]:
     r"""The rover document's turning radius (inches, r > 0 = right) as ours (m, R > 0 = left).
 
@@ -157,6 +162,10 @@ def rover_radius_to_ours(radius_in: ArrayLike) -> float | NDArray[np.float64]:
     return float(out) if out.ndim == 0 else out
 
 
+@overload
+def ours_to_rover_radius(radius_m: float) -> float: ...
+@overload
+def ours_to_rover_radius(radius_m: Stack) -> NDArray[np.float64]: ...
 def ours_to_rover_radius(radius_m: ArrayLike) -> float | NDArray[np.float64]:
     """Our turning radius (m, R > 0 = left) as the rover document's (inches, r > 0 = right).
 
@@ -284,6 +293,10 @@ def ours_to_mecanum_doc_twist(twist: Twist | ArrayLike) -> MecanumDocTwist | NDA
                        MecanumDocTwist)
 
 
+@overload
+def mecanum_doc_heading_to_ours(psi: float) -> float: ...
+@overload
+def mecanum_doc_heading_to_ours(psi: Stack) -> NDArray[np.float64]: ...
 def mecanum_doc_heading_to_ours(psi: ArrayLike) -> float | NDArray[np.float64]:
     r"""The mecanum simulator's heading (rad, clockwise from +Y) as ours (CCW from +x).
 
@@ -303,6 +316,10 @@ def mecanum_doc_heading_to_ours(psi: ArrayLike) -> float | NDArray[np.float64]:
     return _wrap(_no_negative_zero(math.pi / 2 - p))
 
 
+@overload
+def ours_to_mecanum_doc_heading(theta: float) -> float: ...
+@overload
+def ours_to_mecanum_doc_heading(theta: Stack) -> NDArray[np.float64]: ...
 def ours_to_mecanum_doc_heading(theta: ArrayLike) -> float | NDArray[np.float64]:
     r"""Our heading (rad, CCW from +x) as the mecanum simulator's (clockwise from +Y).
 

@@ -30,11 +30,13 @@ A motor's speed in revolutions per minute is a rate like any other:
 from __future__ import annotations
 
 import math
+from typing import overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from wheelkin import _validate as V
+from wheelkin._records import Stack
 
 __all__ = [
     "DEG",
@@ -114,6 +116,10 @@ def _out(arr: np.ndarray):
     return float(arr) if arr.ndim == 0 else arr
 
 
+@overload
+def to_si(value: float, unit: str) -> float: ...
+@overload
+def to_si(value: Stack, unit: str) -> NDArray[np.float64]: ...
 def to_si(value: ArrayLike, unit: str) -> float | NDArray[np.float64]:
     """Convert ``value`` from ``unit`` to SI (m, rad, m/s or rad/s).
 
@@ -141,6 +147,10 @@ def to_si(value: ArrayLike, unit: str) -> float | NDArray[np.float64]:
     return _out(_number_or_array("value", value) * factor)
 
 
+@overload
+def from_si(value: float, unit: str) -> float: ...
+@overload
+def from_si(value: Stack, unit: str) -> NDArray[np.float64]: ...
 def from_si(value: ArrayLike, unit: str) -> float | NDArray[np.float64]:
     """Convert ``value`` from SI (m, rad, m/s or rad/s) to ``unit``; inverse of :func:`to_si`.
 
@@ -155,6 +165,10 @@ def from_si(value: ArrayLike, unit: str) -> float | NDArray[np.float64]:
     return _out(_number_or_array("value", value) / factor)
 
 
+@overload
+def convert(value: float, from_unit: str, to_unit: str) -> float: ...
+@overload
+def convert(value: Stack, from_unit: str, to_unit: str) -> NDArray[np.float64]: ...
 def convert(value: ArrayLike, from_unit: str, to_unit: str) -> float | NDArray[np.float64]:
     """Convert ``value`` between two units of the same kind (``ValueError`` if they differ).
 
@@ -225,6 +239,14 @@ def _metres_per_step(steps_per_m, steps_per_rev, wheel_radius) -> float:
     return 2.0 * math.pi * r / n
 
 
+@overload
+def steps_to_distance(steps: float, *, steps_per_m: float | None = None,
+                      steps_per_rev: float | None = None,
+                      wheel_radius: float | None = None) -> float: ...
+@overload
+def steps_to_distance(steps: Stack, *, steps_per_m: float | None = None,
+                      steps_per_rev: float | None = None,
+                      wheel_radius: float | None = None) -> NDArray[np.float64]: ...
 def steps_to_distance(steps: ArrayLike, *, steps_per_m: float | None = None,
                       steps_per_rev: float | None = None,
                       wheel_radius: float | None = None) -> float | NDArray[np.float64]:
@@ -258,6 +280,14 @@ def steps_to_distance(steps: ArrayLike, *, steps_per_m: float | None = None,
     return _out(V.finite_array("steps", steps) * per_step)
 
 
+@overload
+def distance_to_steps(distance: float, *, steps_per_m: float | None = None,
+                      steps_per_rev: float | None = None,
+                      wheel_radius: float | None = None) -> float: ...
+@overload
+def distance_to_steps(distance: Stack, *, steps_per_m: float | None = None,
+                      steps_per_rev: float | None = None,
+                      wheel_radius: float | None = None) -> NDArray[np.float64]: ...
 def distance_to_steps(distance: ArrayLike, *, steps_per_m: float | None = None,
                       steps_per_rev: float | None = None,
                       wheel_radius: float | None = None) -> float | NDArray[np.float64]:

@@ -379,3 +379,77 @@ def test_a_users_loop_passes_mypy_strict(tmp_path):
     namespace: dict = {}
     exec(compile(program.read_text(), str(program), "exec"), namespace)
     assert math.isfinite(namespace["loop"]())
+
+
+# ------------------------------------------------- mypy --strict, the array-or-scalar functions
+
+ARRAY_PROGRAM = '''
+    """A builder's typed code over the formula functions: a float in gives a float, a Pose (or
+    a tuple of three numbers) gives a Pose, an array gives an array; no casts, no isinstance."""
+    import numpy as np
+    from numpy.typing import NDArray
+
+    from wheelkin import carlike, mecanum, odometry, rover, units
+    from wheelkin.frames import (Pose, Twist, compose, inverse, relative, se2_exp, se2_log,
+                                 wrap_angle)
+
+
+    def one() -> float:
+        heading: float = wrap_angle(7.0)
+        metres: float = units.to_si(12.0, "in")
+        curvature: float = carlike.pure_pursuit_curvature(1.0, 0.5)
+        rim: float = mecanum.circle_speed(2.0, 10.0)
+        chord: float = odometry.chord_factor(0.1)
+        command: float = rover.radius_to_command(100.0)
+        end: Pose = compose(Pose(1.0, 2.0, 0.5), se2_exp(Twist(0.4, 0.0, 0.2), 0.1))
+        back: Pose = relative((1.0, 2.0, 0.5), end)
+        twist: Twist = se2_log(inverse(back))
+        return heading + metres + curvature + rim + chord + command + end.theta + twist.omega
+
+
+    def many() -> float:
+        headings: NDArray[np.float64] = wrap_angle(np.linspace(-7.0, 7.0, 5))
+        metres: NDArray[np.float64] = units.to_si(np.ones(3), "in")
+        curvature: NDArray[np.float64] = carlike.pure_pursuit_curvature(np.ones(3), 0.5)
+        poses: NDArray[np.float64] = compose(np.zeros((4, 3)), Pose(1.0, 0.0, 0.1))
+        twists: NDArray[np.float64] = se2_log(relative(poses, np.zeros((4, 3))))
+        return float(headings.sum() + metres.sum() + curvature.sum() + twists.sum())
+'''
+
+#: Programs that misuse what comes back: each must fail mypy --strict (with the error named).
+MISUSES = {
+    "an array is not a float": (
+        "from wheelkin.frames import wrap_angle\nimport numpy as np\n"
+        "x: float = wrap_angle(np.zeros(3))\n", "variable has type \"float\""),
+    "a Pose has no omega": (
+        "from wheelkin.frames import Pose, compose\n"
+        "w: float = compose(Pose(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)).omega\n",
+        "\"Pose\" has no attribute \"omega\""),
+    "a float has no x": (
+        "from wheelkin import units\nx = units.to_si(1.0, 'm').x\n", "\"float\" has no attribute \"x\""),
+}
+
+
+def _mypy_strict(tmp_path, name: str, source: str) -> subprocess.CompletedProcess[str]:
+    program = tmp_path / f"{name}.py"
+    program.write_text(source)
+    return subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental",
+                           "--cache-dir", str(tmp_path / ".mypy_cache"), str(program)],
+                          capture_output=True, text=True, cwd=tmp_path)
+
+
+def test_the_array_functions_pass_mypy_strict(tmp_path):
+    source = textwrap.dedent(ARRAY_PROGRAM)
+    done = _mypy_strict(tmp_path, "array_user", source)
+    assert done.returncode == 0, done.stdout + done.stderr
+    namespace: dict = {}
+    exec(compile(source, "array_user.py", "exec"), namespace)
+    assert math.isfinite(namespace["one"]()) and math.isfinite(namespace["many"]())
+
+
+@pytest.mark.parametrize("case", sorted(MISUSES))
+def test_a_misused_return_type_fails_mypy_strict(tmp_path, case):
+    source, named = MISUSES[case]
+    done = _mypy_strict(tmp_path, "misuse", source)
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert "error:" in done.stdout and named in done.stdout, done.stdout
