@@ -5,7 +5,8 @@ Our frame (REP-103, :cite:`rep103`)
 Body frame: x forward, y left, z up; the reference point is the origin of the body frame.
 World frame: x east, y north, z up. A pose is :math:`(x, y, \theta)` in the world frame, in
 metres and radians, with the heading :math:`\theta` measured counter-clockwise from world +x
-and wrapped to :math:`(-\pi, \pi]` where a wrapped angle is meant. A twist is
+and never wrapped in a pose the library returns (it keeps the turns, as odometry does; use
+:func:`wrap_angle` where a wrapped angle is meant). A twist is
 :math:`(v_x, v_y, \omega)` in the body frame, in m/s and rad/s, with :math:`\omega`
 counter-clockwise positive. A positive turning radius :math:`R` is a left turn.
 
@@ -493,7 +494,7 @@ def compose(pose: Pose | ArrayLike, delta: Pose | ArrayLike) -> Pose | NDArray[n
     .. math::
         x' = x + \Delta x\cos\theta - \Delta y \sin\theta,\quad
         y' = y + \Delta x \sin\theta + \Delta y \cos\theta,\quad
-        \theta' = \operatorname{wrap}(\theta + \Delta\theta)
+        \theta' = \theta + \Delta\theta
 
     Parameters
     ----------
@@ -517,7 +518,7 @@ def compose(pose: Pose | ArrayLike, delta: Pose | ArrayLike) -> Pose | NDArray[n
     dx, dy, dth = _pose_columns("delta", delta)
     _together("pose", x, "delta", dx)
     c, s = np.cos(th), np.sin(th)
-    out = (x + c * dx - s * dy, y + s * dx + c * dy, wrap_angle(th + dth))
+    out = (x + c * dx - s * dy, y + s * dx + c * dy, np.asarray(th + dth))
     return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], both)
 
 
@@ -556,7 +557,7 @@ def inverse(pose: Pose | ArrayLike) -> Pose | NDArray[np.float64]:
     is_pose = _is_one(pose, Pose)
     x, y, th = _pose_columns("pose", pose)
     c, s = np.cos(th), np.sin(th)
-    out = (-c * x - s * y, s * x - c * y, wrap_angle(-np.asarray(th)))
+    out = (-c * x - s * y, s * x - c * y, -np.asarray(th))
     return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], is_pose)
 
 
@@ -583,7 +584,7 @@ def relative(pose_from: Pose | ArrayLike, pose_to: Pose | ArrayLike) -> Pose | N
     _together("pose_from", x0, "pose_to", x1)
     c, s = np.cos(th0), np.sin(th0)
     dx, dy = x1 - x0, y1 - y0
-    out = (c * dx + s * dy, -s * dx + c * dy, wrap_angle(np.asarray(th1) - th0))
+    out = (c * dx + s * dy, -s * dx + c * dy, np.asarray(th1) - th0)
     return _pack(Pose, [_no_negative_zero(np.asarray(o)) for o in out], both)
 
 
@@ -624,7 +625,8 @@ def integrate_twist(twists: ArrayLike, dt: float,
     Returns
     -------
     numpy.ndarray, shape (N + 1, 3)
-        Poses :math:`(x, y, \theta)` at times 0, dt, ..., N dt (headings wrapped).
+        Poses :math:`(x, y, \theta)` at times 0, dt, ..., N dt (headings not wrapped: the
+        sum of the turns, as odometry keeps it).
 
     Examples
     --------
@@ -635,8 +637,8 @@ def integrate_twist(twists: ArrayLike, dt: float,
     array([[ 0.        ,  0.        ,  0.        ],
            [ 1.        ,  1.        ,  1.57079633],
            [ 0.        ,  2.        ,  3.14159265],
-           [-1.        ,  1.        , -1.57079633],
-           [ 0.        ,  0.        ,  0.        ]])
+           [-1.        ,  1.        ,  4.71238898],
+           [ 0.        ,  0.        ,  6.28318531]])
     """
     tw = V.shaped("twists", twists, (3,))
     if tw.ndim != 2:
@@ -651,5 +653,5 @@ def integrate_twist(twists: ArrayLike, dt: float,
     out = np.empty((tw.shape[0] + 1, 3))
     out[:, 0] = start[0] + np.concatenate([[0.0], np.cumsum(world_dx)])
     out[:, 1] = start[1] + np.concatenate([[0.0], np.cumsum(world_dy)])
-    out[:, 2] = wrap_angle(headings)
+    out[:, 2] = headings
     return out + 0.0

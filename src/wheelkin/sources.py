@@ -339,10 +339,10 @@ def mecanum_doc_pose_to_ours(X_ft: ArrayLike, Y_ft: ArrayLike,
     r"""The mecanum simulator's world pose (ft, ft, rad clockwise from +Y) as ours.
 
     .. math:: x = 0.3048\, X,\quad y = 0.3048\, Y,\quad
-              \theta = \operatorname{wrap}(\pi/2 - \psi)
+              \theta = \pi/2 - \psi
 
-    Its world X is to the right (east) and Y up the page (north), as ours; only the unit and
-    the heading convention differ.
+    (not wrapped, as every pose the library returns). Its world X is to the right (east) and
+    Y up the page (north), as ours; only the unit and the heading convention differ.
 
     Examples
     --------
@@ -350,7 +350,7 @@ def mecanum_doc_pose_to_ours(X_ft: ArrayLike, Y_ft: ArrayLike,
     Pose(x=3.048, y=-1.524, theta=1.5707963267948966)
     """
     (x_doc, y_doc, p), scalar = _components(("X_ft", "Y_ft", "psi"), (X_ft, Y_ft, psi))
-    return _pack(Pose, (x_doc * FOOT, y_doc * FOOT, np.asarray(mecanum_doc_heading_to_ours(p))),
+    return _pack(Pose, (x_doc * FOOT, y_doc * FOOT, _no_negative_zero(math.pi / 2 - p)),
                  scalar)
 
 

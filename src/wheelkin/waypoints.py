@@ -305,7 +305,7 @@ def plan_segments(waypoints: ArrayLike, arc_radius: float | None = LAB_ARC_RADIU
     if initial_heading is None:
         theta = _heading_of(pts[1] - pts[0])
     else:
-        theta = float(wrap_angle(V.finite("initial_heading", initial_heading)))
+        theta = V.finite("initial_heading", initial_heading)  # kept as given, not wrapped
 
     segments: list[Segment] = []
     x, y = float(pts[0, 0]), float(pts[0, 1])

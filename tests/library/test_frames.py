@@ -269,7 +269,9 @@ def test_integrate_twist_matches_rk4():
     ref = rk4_world(twists, 0.1, [0.5, -0.2, 3.0])
     np.testing.assert_allclose(poses[:, :2], ref[:, :2], atol=1e-9)
     assert all(same_angle(a, b, 1e-9) for a, b in zip(poses[:, 2], ref[:, 2], strict=True))
-    assert np.all((poses[:, 2] > -PI) & (poses[:, 2] <= PI))
+    # not wrapped: the start heading (3 rad, near pi) plus the summed turns
+    turns = np.concatenate([[0.0], np.cumsum(twists[:, 2] * 0.1)])
+    np.testing.assert_allclose(poses[:, 2], 3.0 + turns, atol=1e-12)
 
 
 def test_integrate_twist_matches_matrix_products():
@@ -287,7 +289,7 @@ def test_integrate_twist_matches_matrix_products():
 def test_a_circle_closes_and_stays_on_its_circle():
     n = 48
     poses = integrate_twist(np.tile([0.5, 0.0, 0.5 / 1.5], (n, 1)), 2 * PI * 1.5 / 0.5 / n)
-    np.testing.assert_allclose(poses[-1], [0.0, 0.0, 0.0], atol=1e-12)
+    np.testing.assert_allclose(poses[-1], [0.0, 0.0, 2 * PI], atol=1e-12)  # one whole turn
     np.testing.assert_allclose(np.hypot(poses[:, 0], poses[:, 1] - 1.5), 1.5, rtol=1e-12)
 
 
@@ -318,7 +320,7 @@ def test_compose_matches_matrix_product(x, y, th, dx, dy, dth):
     ref = from_homogeneous(homogeneous(x, y, th) @ homogeneous(dx, dy, dth))
     np.testing.assert_allclose([got.x, got.y], ref[:2], atol=1e-9)
     assert same_angle(got.theta, ref[2])
-    assert -PI < got.theta <= PI
+    assert got.theta == pytest.approx(th + dth, abs=1e-12)  # not wrapped: the turns add
 
 
 @given(val, val, angle, val, val, angle)
@@ -711,9 +713,10 @@ def test_pose_rate_by_hand_and_vectorised():
         frames.pose_rate(0.0, [1.0, 0.0])
 
 
-def test_relative_heading_is_wrapped():
-    # from heading 3.0 to heading -3.0 is a turn of 2 pi - 6 = +0.283 rad, not -6 rad
+def test_relative_heading_is_the_unwrapped_difference():
+    # from heading 3.0 to heading -3.0: -6 rad as given (wrap_angle gives the shorter +0.283)
     d = frames.relative(Pose(0.0, 0.0, 3.0), Pose(0.0, 0.0, -3.0))
-    assert d.theta == pytest.approx(2 * math.pi - 6.0, abs=1e-15)
+    assert d.theta == pytest.approx(-6.0, abs=1e-15)
+    assert frames.wrap_angle(d.theta) == pytest.approx(2 * math.pi - 6.0, abs=1e-15)
     out = frames.relative([[0.0, 0.0, -3.0]], [[0.0, 0.0, 3.0]])
-    assert out[0, 2] == pytest.approx(6.0 - 2 * math.pi, abs=1e-15)
+    assert out[0, 2] == pytest.approx(6.0, abs=1e-15)
