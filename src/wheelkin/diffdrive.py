@@ -58,7 +58,7 @@ from numpy.typing import ArrayLike, NDArray
 from wheelkin import _kernels
 from wheelkin import _validate as V
 from wheelkin._kernels import c_div, diff_drive_wheel_speeds
-from wheelkin._records import Stack
+from wheelkin._records import Stack, Twist, _components, _pack, _unpack
 from wheelkin.units import RADON_ULZER_STEPS_PER_M
 
 __all__ = [
@@ -174,10 +174,51 @@ class WheelSpeeds(NamedTuple):
 
 class BodyTwist(NamedTuple):
     """A differential drive's twist: forward speed ``v`` (m/s) and yaw rate ``omega`` (rad/s,
-    counter-clockwise positive), each a float or an array."""
+    counter-clockwise positive), each a float or an array.
+
+    Two components, not the three of a :class:`~wheelkin.frames.Twist`, on purpose: a
+    differential drive's wheels cannot slide sideways, so its sideways speed is zero by
+    construction, and a record with a ``vy`` would invite a value the vehicle cannot have.
+    :meth:`to_twist` gives the :class:`~wheelkin.frames.Twist` (``vy = 0``) the frame
+    functions take; :meth:`from_twist` takes one back and refuses a sideways speed.
+
+    >>> BodyTwist(0.5, 0.2).to_twist()
+    Twist(vx=0.5, vy=0.0, omega=0.2)
+    >>> BodyTwist.from_twist(Twist(0.5, 0.0, 0.2))
+    BodyTwist(v=0.5, omega=0.2)
+    >>> BodyTwist.from_twist(Twist(0.5, 0.1, 0.2))
+    Traceback (most recent call last):
+    ...
+    ValueError: twist must have vy = 0 (a differential drive cannot move sideways), got vy = 0.1
+    """
 
     v: Any
     omega: Any
+
+    def to_twist(self) -> Twist | NDArray[np.float64]:
+        """The :class:`~wheelkin.frames.Twist` ``(v, 0, omega)``; an array (..., 3) for
+        arrays."""
+        (v, w), scalar = _components(("v", "omega"), (self.v, self.omega))
+        return _pack(Twist, (v, np.zeros_like(v), w), scalar)
+
+    @classmethod
+    def from_twist(cls, twist: Twist | ArrayLike) -> BodyTwist:
+        """``(vx, omega)`` of a twist whose ``vy`` is zero (a ValueError naming ``twist``
+        otherwise); floats for a Twist, arrays for an array (..., 3)."""
+        return cls(*_planar(twist))
+
+
+def _planar(twist: Twist | ArrayLike) -> tuple[Any, Any]:
+    """(vx, omega) of a twist without a sideways speed, refusing one that has it."""
+    (vx, vy, w), is_record = _unpack("twist", twist, Twist)
+    sideways = np.asarray(vy, dtype=float)
+    if np.any(sideways != 0.0):
+        shown = float(sideways) if sideways.ndim == 0 else f"up to {np.max(np.abs(sideways)):g}"
+        raise ValueError(f"twist must have vy = 0 (a differential drive cannot move sideways), "
+                         f"got vy = {shown}")
+    if is_record:
+        return float(vx), float(w)
+    return np.asarray(vx, dtype=float), np.asarray(w, dtype=float)
 
 
 class WheelSpeedsSteps(NamedTuple):

@@ -40,7 +40,8 @@ from numpy.typing import ArrayLike
 
 from wheelkin import _validate as V
 from wheelkin._kernels import arc_step, diff_drive_wheel_speeds, wrap_angle
-from wheelkin.frames import Pose
+from wheelkin.diffdrive import BodyTwist
+from wheelkin.frames import Pose, Twist
 from wheelkin.waypoints import (
     LAB_HALF_AXLE,
     LAB_HALF_WHEELBASE,
@@ -68,10 +69,32 @@ __all__ = [
 
 class BodyCommand(NamedTuple):
     """A body twist of a differential drive: forward speed (m/s) and yaw rate (rad/s,
-    counter-clockwise positive)."""
+    counter-clockwise positive).
+
+    The command a follower sends, in the words of the lab it follows; the same two numbers
+    as :class:`wheelkin.diffdrive.BodyTwist` (a differential drive has no sideways speed, so
+    not a three-component :class:`~wheelkin.frames.Twist`). :meth:`to_twist` and
+    :meth:`from_twist` convert.
+
+    >>> BodyCommand(0.3, -0.5).to_twist()
+    Twist(vx=0.3, vy=0.0, omega=-0.5)
+    >>> BodyCommand.from_twist(Twist(0.3, 0.0, -0.5))
+    BodyCommand(speed=0.3, yaw_rate=-0.5)
+    """
 
     speed: float
     yaw_rate: float
+
+    def to_twist(self) -> Twist:
+        """The :class:`~wheelkin.frames.Twist` ``(speed, 0, yaw_rate)``."""
+        return Twist(self.speed, 0.0, self.yaw_rate)
+
+    @classmethod
+    def from_twist(cls, twist: Twist | tuple[float, float, float]) -> BodyCommand:
+        """The command of a twist whose ``vy`` is zero (a ValueError naming ``twist``
+        otherwise)."""
+        speed, yaw_rate = BodyTwist.from_twist(Twist(*V.twist("twist", twist).tolist()))
+        return cls(float(speed), float(yaw_rate))
 
 
 class SideRates(NamedTuple):
