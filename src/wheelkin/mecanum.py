@@ -51,7 +51,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import NamedTuple, overload
+from typing import Any, NamedTuple, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -169,6 +169,38 @@ def _geometry(geometry) -> MecanumGeometry:
     return geometry
 
 
+def _twist_or_components(vx, vy, omega, geometry, function: str = "inverse_kinematics"):
+    """(vx, vy, omega, geometry) from either form of :func:`inverse_kinematics` (or of
+    :func:`max_rim_speed`, named by ``function``).
+
+    ``(twist, geometry)``: the twist's columns; ``(vx, vy, omega, geometry)``: as given. A twist
+    where a component is meant, a missing argument or one too many is a ``TypeError`` (also a
+    ``ValueError``) naming the parameter.
+    """
+    forms = f"{function}(twist, geometry) or {function}(vx, vy, omega, geometry)"
+    if omega is None and geometry is None and vy is not None:  # (twist, geometry)
+        if isinstance(vx, Pose):
+            raise V.InputTypeError(f"twist must be a Twist, a tuple (vx, vy, omega) or an array "
+                                   f"of shape (..., 3), got a Pose; use {forms}")
+        if isinstance(vx, Twist):
+            arr = vx.as_array()
+        else:
+            arr = V.finite_array("twist", vx)
+            if arr.ndim == 0 or arr.shape[-1] != 3:
+                raise V.InputTypeError(
+                    f"twist must be a Twist, a tuple (vx, vy, omega) or an array of shape "
+                    f"(..., 3), got shape {arr.shape}; use {forms}")
+        return arr[..., 0], arr[..., 1], arr[..., 2], vy
+    for name, value in (("vx", vx), ("vy", vy), ("omega", omega)):
+        if isinstance(value, Twist | Pose | MecanumGeometry):
+            raise V.InputTypeError(f"{name} must be a number or an array of numbers, got a "
+                                   f"{type(value).__name__}; use {forms}")
+    for name, value in (("vy", vy), ("omega", omega), ("geometry", geometry)):
+        if value is None:
+            raise V.InputTypeError(f"{name} is missing: use {forms}")
+    return vx, vy, omega, geometry
+
+
 def _broadcast(**arrays: np.ndarray) -> list[np.ndarray]:
     return V.broadcast(**arrays)
 
@@ -241,9 +273,19 @@ def forward_matrix(geometry: MecanumGeometry) -> np.ndarray:
     return rows * (g.wheel_radius / 4.0)
 
 
+#: One body twist given as itself: a :class:`~wheelkin.frames.Twist` or a tuple of three numbers.
+OneTwist = Twist | tuple[float, float, float]
+
+
+@overload
+def inverse_kinematics(twist: OneTwist | Stack, geometry: MecanumGeometry, /, *,
+                       centre_of_rotation: ArrayLike | None = None) -> NDArray[np.float64]: ...
+@overload
 def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
                        geometry: MecanumGeometry, *,
-                       centre_of_rotation: ArrayLike | None = None) -> np.ndarray:
+                       centre_of_rotation: ArrayLike | None = None) -> NDArray[np.float64]: ...
+def inverse_kinematics(vx: Any, vy: Any = None, omega: Any = None, geometry: Any = None, *,
+                       centre_of_rotation: ArrayLike | None = None) -> NDArray[np.float64]:
     r"""Wheel angular rates (FL, FR, RL, RR), rad/s, that produce the body twist.
 
     .. math::
@@ -261,8 +303,15 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     point :math:`c` and the body turns about it at :math:`\omega`; the centre's velocity is
     then :math:`(v_x + \omega c_y,\; v_y - \omega c_x)`, which goes into the equations above.
 
+    Two forms: ``inverse_kinematics(twist, geometry)`` with a :class:`~wheelkin.frames.Twist`
+    (or a tuple of three numbers, or an array of twists of shape (..., 3)), and
+    ``inverse_kinematics(vx, vy, omega, geometry)`` with the components. Any other
+    combination is a ``TypeError`` naming the parameter.
+
     Parameters
     ----------
+    twist : Twist, tuple of three numbers or array_like of shape (..., 3)
+        (vx m/s, vy m/s, omega rad/s), body frame; the first form's only twist argument.
     vx, vy : float or array_like
         Body velocity of the centre (or of ``centre_of_rotation``), m/s (x forward, y left).
     omega : float or array_like
@@ -284,6 +333,8 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> inverse_kinematics(0.0, 1.0, 0.0, g)
     array([-20.,  20.,  20., -20.])
+    >>> inverse_kinematics(Twist(vx=0.0, vy=1.0, omega=0.0), g)
+    array([-20.,  20.,  20., -20.])
     >>> inverse_kinematics([1.0, 0.0], 0.0, [0.0, 1.0], g)
     array([[20., 20., 20., 20.],
            [-7.,  7., -7.,  7.]])
@@ -293,10 +344,13 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
     >>> np.round(inverse_kinematics(0.0, 0.0, 1.0, g, centre_of_rotation=(0.2, 0.15)), 12) + 0
     array([ 0.,  6., -8., 14.])
     """
+    is_twist = omega is None and geometry is None
+    vx, vy, omega, geometry = _twist_or_components(vx, vy, omega, geometry)
     g = _geometry(geometry)
     vx_a, vy_a, w_a = _broadcast(vx=V.finite_array("vx", vx), vy=V.finite_array("vy", vy),
                                  omega=V.finite_array("omega", omega))
-    names = "vx, vy, omega and the geometry"
+    given = "twist" if is_twist else "vx, vy, omega"
+    names = f"{given} and the geometry"
     with np.errstate(all="ignore"):  # an overflow is refused below, naming the inputs
         if centre_of_rotation is not None:
             c = V.finite_array("centre_of_rotation", centre_of_rotation)
@@ -304,13 +358,23 @@ def inverse_kinematics(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
                 raise ValueError("centre_of_rotation must have shape (2,): (c_x, c_y) in m, "
                                  f"got shape {c.shape}")
             vx_a, vy_a, w_a = shift_twist(vx_a, vy_a, w_a, c[0], c[1])
-            names = "vx, vy, omega, centre_of_rotation and the geometry"
+            names = f"{given}, centre_of_rotation and the geometry"
         twist = np.stack([vx_a, vy_a, w_a], axis=-1)
         rates = twist @ inverse_matrix(g).T
     return V.finite_result(names, rates)
 
 
-def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.ndarray:
+@overload
+def forward_kinematics(wheel_rates: tuple[float, float, float, float] | list[float],
+                       geometry: MecanumGeometry) -> Twist: ...
+@overload
+def forward_kinematics(wheel_rates: list[list[float]], geometry: MecanumGeometry
+                       ) -> NDArray[np.float64]: ...
+@overload
+def forward_kinematics(wheel_rates: NDArray[Any], geometry: MecanumGeometry
+                       ) -> Twist | NDArray[np.float64]: ...
+def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry
+                       ) -> Twist | NDArray[np.float64]:
     r"""The body twist (vx, vy, omega) that best explains four wheel rates (least squares).
 
     .. math::
@@ -336,20 +400,28 @@ def forward_kinematics(wheel_rates: ArrayLike, geometry: MecanumGeometry) -> np.
 
     Returns
     -------
-    numpy.ndarray, shape (..., 3)
-        (vx m/s, vy m/s, omega rad/s) in the body frame.
+    Twist for one set of four rates (shape (4,)), numpy.ndarray of shape (..., 3) for a stack
+        (vx m/s, vy m/s, omega rad/s) in the body frame. A Twist unpacks and indexes like the
+        array did; take ``np.asarray(...)`` for arithmetic (``twist * 2`` repeats the tuple).
+        The static type is ``Twist`` for a list or tuple of four numbers, an array for a
+        nested list; an ``ndarray``'s shape is not known to a type checker, so its result
+        is typed ``Twist | ndarray``.
 
     Examples
     --------
     >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> forward_kinematics([-20.0, 20.0, 20.0, -20.0], g)
-    array([0., 1., 0.])
+    Twist(vx=0.0, vy=1.0, omega=0.0)
     >>> forward_kinematics([10.0, 10.0, -10.0, -10.0], g)  # the wheels fight: no motion
-    array([0., 0., 0.])
+    Twist(vx=0.0, vy=0.0, omega=0.0)
+    >>> np.round(forward_kinematics([[20.0, 20.0, 20.0, 20.0], [-7.0, 7.0, -7.0, 7.0]], g), 12) + 0
+    array([[1., 0., 0.],
+           [0., 0., 1.]])
     """
     g = _geometry(geometry)
     rates = V.shaped("wheel_rates", wheel_rates, (4,))
-    return rates @ forward_matrix(g).T
+    out = rates @ forward_matrix(g).T + 0.0
+    return Twist(*out.tolist()) if out.ndim == 1 else out
 
 
 @overload
@@ -387,13 +459,21 @@ def fighting_component(wheel_rates: ArrayLike) -> float | NDArray[np.float64]:
 
 
 @overload
+def max_rim_speed(twist: OneTwist | list[float], geometry: MecanumGeometry, /) -> float: ...
+@overload
+def max_rim_speed(twist: list[list[float]], geometry: MecanumGeometry, /
+                  ) -> NDArray[np.float64]: ...
+@overload
+def max_rim_speed(twist: NDArray[Any], geometry: MecanumGeometry, /
+                  ) -> float | NDArray[np.float64]: ...
+@overload
 def max_rim_speed(vx: float, vy: float, omega: float,  # type: ignore[overload-overlap]
                   geometry: MecanumGeometry) -> float: ...
 @overload
 def max_rim_speed(vx: float | Stack, vy: float | Stack, omega: float | Stack,
                   geometry: MecanumGeometry) -> NDArray[np.float64]: ...
-def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
-                  geometry: MecanumGeometry) -> float | NDArray[np.float64]:
+def max_rim_speed(vx: Any, vy: Any = None, omega: Any = None,
+                  geometry: Any = None) -> float | NDArray[np.float64]:
     r"""The fastest wheel's rim speed :math:`r_w\max_i|\dot\varphi_i|`, m/s, for a body twist.
 
     Every sign combination of the :math:`v_y` and :math:`\omega` terms occurs on one of the
@@ -403,12 +483,25 @@ def max_rim_speed(vx: ArrayLike, vy: ArrayLike, omega: ArrayLike,
 
     This, not the body speed :math:`\sqrt{v_x^2+v_y^2}`, is what the motors limit.
 
+    Like :func:`inverse_kinematics`, it takes ``max_rim_speed(twist, geometry)`` (a Twist, a
+    tuple of three numbers or an array of shape (..., 3)) or
+    ``max_rim_speed(vx, vy, omega, geometry)``.
+
+    Returns
+    -------
+    float for one twist (shape (3,), or scalar components), numpy.ndarray for a stack
+        m/s. An ``ndarray`` twist's shape is not known to a type checker: its result is
+        typed ``float | ndarray``.
+
     Examples
     --------
     >>> g = MecanumGeometry(wheel_radius=0.05, half_wheelbase=0.2, half_track=0.15)
     >>> max_rim_speed(1.0, 1.0, 0.0, g)  # diagonal: body speed 1.414 m/s
     2.0
+    >>> max_rim_speed(Twist(vx=1.0, vy=1.0, omega=0.0), g)
+    2.0
     """
+    vx, vy, omega, geometry = _twist_or_components(vx, vy, omega, geometry, "max_rim_speed")
     g = _geometry(geometry)
     vx_a, vy_a, w_a = _broadcast(vx=V.finite_array("vx", vx), vy=V.finite_array("vy", vy),
                                  omega=V.finite_array("omega", omega))

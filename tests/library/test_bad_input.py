@@ -208,6 +208,9 @@ OVERRIDES = {
     "unified.rover_wheels": {"geometry": None},
     "unified.sliding_row": {"wheel": None},
     "mecanum.circle_twist": {"radius": 1.0, "lap_time": 10.0},
+    # the components form; the twist form is swept by test_mecanum_twist_form_bad_input
+    "mecanum.inverse_kinematics": {"vx": 0.5, "vy": 0.2, "omega": 0.1},
+    "mecanum.max_rim_speed": {"vx": 0.5, "vy": 0.2, "omega": 0.1},
     "mecanum.circle_speed": {"radius": 1.0, "lap_time": 10.0},
     "sources.rover_twist": {"radius_in": 30.0, "centre_speed_in_per_s": 10.0},
     "diffdrive.speed_from_counts": {"counts": [0, 5, 10, 15], "times": [0.0, 0.1, 0.2, 0.3],
@@ -406,6 +409,7 @@ def _overflowing_calls():
         ("mecanum", lambda: mecanum.inverse_kinematics(1e308, 1e308, 0.0, g), "vx, vy, omega"),
         ("mecanum centre", lambda: mecanum.inverse_kinematics(
             0.0, 0.0, 1e308, g, centre_of_rotation=(1e308, 0.0)), "centre_of_rotation"),
+        ("mecanum twist", lambda: mecanum.inverse_kinematics((1e308, 1e308, 0.0), g), "twist"),
     ]
 
 
@@ -418,6 +422,29 @@ def test_a_result_that_overflows_is_an_error_naming_the_inputs(label, call, name
         with pytest.raises(ValueError, match=rf"{names}.* is out of range: the result overflows"):
             call()
 
+
+
+@pytest.mark.parametrize("function", ["inverse_kinematics", "max_rim_speed"])
+@pytest.mark.parametrize("label", [*BAD_VALUES, "Pose", "two", "component"])
+def test_mecanum_twist_form_bad_input(label, function):
+    """``inverse_kinematics(twist, geometry)``, the second form, with each bad value as the
+    twist (and a Pose, two numbers, a lone number): a clean error naming ``twist``, or, for
+    a value that broadcasts to a valid stack, a finite result."""
+    from wheelkin import mecanum
+    from wheelkin.frames import Pose
+
+    value = {"Pose": Pose(0.0, 0.0, 0.0), "two": (1.0, 0.0), "component": 0.5}.get(
+        label, BAD_VALUES.get(label))
+    g = mecanum.EXAMPLE_GEOMETRY
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        with pytest.raises((ValueError, TypeError), match=r"^twist\b"):
+            getattr(mecanum, function)(value, g)
+    for twist in ((value, 0.0, 0.0), (0.0, value, 0.0), (0.0, 0.0, value)):
+        if label in ("Pose", "two", "component", "wrong-shape", "subnormal", "huge"):
+            continue  # not a bad component of a tuple, or a valid one
+        with pytest.raises((ValueError, TypeError), match=r"^twist\b"):
+            getattr(mecanum, function)(twist, g)
 
 def test_large_finite_inputs_still_give_the_formula():
     """Just below the overflow the same functions return the hand formula's values."""

@@ -524,7 +524,7 @@ def test_desaturate_keeps_the_motion_direction_and_vectorises():
     twist_in = mecanum.forward_kinematics(rates, g)
     twist_out = mecanum.forward_kinematics(out, g)
     s = 20.0 / np.max(np.abs(rates))
-    np.testing.assert_allclose(twist_out, s * twist_in, atol=1e-12)  # same path, slower
+    np.testing.assert_allclose(twist_out, s * np.asarray(twist_in), atol=1e-12)  # slower
     batch = mecanum.desaturate([[1.0, 2.0, 3.0, 4.0], [10.0, 0.0, 0.0, -20.0]], 5.0)
     np.testing.assert_allclose(batch, [[1.0, 2.0, 3.0, 4.0], [2.5, 0.0, 0.0, -5.0]])
     for bad, name in (([1.0, 2.0, 3.0], 5.0), ([1.0, math.nan, 0, 0], 5.0)):

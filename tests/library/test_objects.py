@@ -338,7 +338,7 @@ USER_PROGRAM = '''
 
     from wheelkin.frames import Pose, Twist, field_relative
     from wheelkin.kinematics import DiffDriveKinematics, DiffDriveWheelSpeeds, MecanumKinematics
-    from wheelkin.mecanum import MecanumGeometry
+    from wheelkin.mecanum import MecanumGeometry, forward_kinematics, inverse_kinematics
     from wheelkin.odometers import DiffDriveOdometry, MecanumOdometry
 
 
@@ -364,7 +364,11 @@ USER_PROGRAM = '''
         fl: float = base.inverse(field_relative(Twist(0.3, 0.2, 0.0), heading)).fl
         mecanum_odo = MecanumOdometry(base)
         x: float = mecanum_odo.update(fl, fl, fl, fl).x
-        return heading + twist.omega + spread + x + math.pi
+        rates = inverse_kinematics(Twist(0.3, 0.2, 0.1), base.geometry)
+        same = inverse_kinematics(0.3, 0.2, 0.1, base.geometry)
+        back: Twist = forward_kinematics([float(r) for r in rates], base.geometry)
+        vy: float = back.vy + float(same[0] - rates[0])
+        return heading + twist.omega + spread + x + vy + math.pi
 '''
 
 

@@ -64,13 +64,13 @@ def twist_from_rates(rates: ArrayLike, wheel_radius: float, half_wheelbase: floa
     """The body twist (vx m/s, vy m/s, omega rad/s) from wheel rates FL, FR, RL, RR (rad/s)."""
     g = MecanumGeometry(half_wheelbase=half_wheelbase, half_track=half_track,
                         wheel_radius=wheel_radius)
-    return forward_kinematics(rates, g)
+    return np.asarray(forward_kinematics(rates, g))
 
 
 def _twist_full_dims(rates, wheel_radius, half_wheelbase, half_track):
     g = MecanumGeometry(half_wheelbase=2 * half_wheelbase, half_track=2 * half_track,
                         wheel_radius=wheel_radius)
-    return forward_kinematics(rates, g)
+    return np.asarray(forward_kinematics(rates, g))
 
 
 def _twist_no_quarter(rates, wheel_radius, half_wheelbase, half_track):
