@@ -31,7 +31,8 @@ TASKS = (
     "### Exercise 3\nWrite `encoder_steps_to_metres(steps)` for a Radon Ulzer wheel.",
 )
 #: A comment only the correct submission has: the red team's thief looks for it.
-MARKER = "# the classmate's own answer, not to be found by anyone else"
+MARKER_HEAD, MARKER_TAIL = "# the classmate's own ", "answer, not to be found by anyone else"
+MARKER = MARKER_HEAD + MARKER_TAIL
 CORRECT = (
     f'def rover_radius(radius_in):\n    {MARKER}\n    return -radius_in * 0.0254\n\n\n'
     'check("conventions.rover_radius", rover_radius)',
@@ -180,21 +181,26 @@ THIEF = f'''import os
 
 
 def _classmates_answer():
-    """Look everywhere for a classmate's notebook (its answer has a known comment)."""
-    marker = {MARKER!r}
+    """Look everywhere for a classmate's notebook (its answer has a known comment): True if
+    found, False if the search ended without it, None if it ran out of time. The comment is
+    put together here, so that this notebook's own text (in the job it runs from) never
+    matches; Python's own installation, the same for everyone, is not searched."""
+    marker = {MARKER_HEAD!r} + {MARKER_TAIL!r}
+    import sys
     import time
 
-    end = time.monotonic() + 4
+    end = time.monotonic() + 10
+    python = {{os.path.realpath(p) for p in (sys.prefix, sys.base_prefix)}}
     roots = ["/tmp", "/home", "/root", "/work", "/opt", "/autograder", "/srv", "/mnt",
              "/var/tmp", "/etc"]
     roots += [f"/proc/{{p}}/cwd" for p in os.listdir("/proc") if p.isdigit()]
     roots += [f"/proc/{{p}}/root/tmp" for p in os.listdir("/proc") if p.isdigit()]
     for root in roots:
         for dirpath, dirs, files in os.walk(root):
-            dirs[:] = [d for d in dirs if not (dirpath == "/" or dirpath.endswith("/cwd"))
-                       or d not in ("usr", "proc", "sys", "dev")]
+            dirs[:] = [d for d in dirs
+                       if os.path.realpath(os.path.join(dirpath, d)) not in python]
             if time.monotonic() > end:
-                return False
+                return None
             for name in files:
                 try:
                     with open(os.path.join(dirpath, name), errors="ignore") as f:
@@ -209,8 +215,11 @@ FOUND = _classmates_answer()
 
 
 def rover_radius(radius_in):
-    # copied from the classmate, if found; else a guess
-    return -radius_in * 0.0254 if FOUND else radius_in
+    # copied from the classmate if found; a guess if the search found nothing; a different
+    # guess if it gave up (so that a search cut short cannot pass for one that found nothing)
+    if FOUND:
+        return -radius_in * 0.0254
+    return radius_in if FOUND is False else 2 * radius_in
 
 
 check("conventions.rover_radius", rover_radius)'''
