@@ -27,12 +27,14 @@ rover_radius, icr (2 points), encoder_steps and the ramp):
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import shutil
 import sys
 import unicodedata
 from pathlib import Path
 
+import nbformat
 import pytest
 
 from tests.kit.test_grade import EXERCISES, grade, sandbox_uids
@@ -198,3 +200,37 @@ def test_nothing_outlives_the_run_and_nothing_outside_changed(attacked):
     venv = Path(sys.prefix)
     assert not list(venv.glob("lib/python*/site-packages/sitecustomize.py"))
     assert "builtins.__import__ = None" not in (ROOT / "tools/grading/wire.py").read_text()
+
+
+@pytest.mark.parametrize("planted", [True, False])
+def test_the_thief_finds_a_classmate_where_one_is_visible(tmp_path, planted):
+    """The classmate_file attack is a real search: in a sandbox that shows it a classmate's
+    job (a grader that leaked one), it finds the answer; without one, its whole search ends
+    in time and finds nothing, its own job's text included. So its 0 in the attacked run
+    means nothing was visible, not a search that gave up or was blind."""
+    cells = nbformat.read(HERE / "redteam" / "classmate_file.ipynb", as_version=4).cells
+    thief = next(c.source for c in cells if "def _classmates_answer" in c.source)
+    thief = thief.split("FOUND = _classmates_answer()")[0] + "print(_classmates_answer())\n"
+    job, leak = tmp_path / "job", tmp_path / "leak"
+    job.mkdir(), leak.mkdir()
+    (job / "thief.py").write_text(thief, encoding="utf-8")
+    (job / "job.json").write_text(json.dumps({"cells": [[0, thief]]}), encoding="utf-8")
+    binds = [(job, jail.JOB)]
+    if planted:
+        classmate = nbformat.read(HERE / "submissions" / "correct.ipynb", as_version=4)
+        (leak / "job.json").write_text(json.dumps(
+            {"cells": [[i, c.source] for i, c in enumerate(classmate.cells)]}),
+            encoding="utf-8")
+        binds.append((leak, "/srv/leaked-job"))
+    for path in (tmp_path, job, leak, *job.iterdir(), *leak.iterdir()):
+        path.chmod(0o755 if path.is_dir() else 0o644)
+    uid_base, lock = jail.claim_uids()
+    try:
+        etc = jail.write_etc(tmp_path / "etc", uid_base if os.geteuid() == 0 else 65534)
+        box = jail.Sandbox(jail.Limits(seconds=60), etc, binds, uid_base=uid_base)
+        outcome = box.run([jail.python_in_sandbox(), f"{jail.JOB}/thief.py"])
+    finally:
+        if lock is not None:
+            os.close(lock)
+    assert outcome.returncode == 0, outcome.tail
+    assert outcome.tail.strip() == str(planted), outcome.tail
