@@ -18,7 +18,8 @@ the two front wheel angles:
 ``"parallel"``
     both wheels at ``delta``.
 
-The rear wheels turn at the rates of the bicycle twist (an ideal differential):
+The rear wheels are driven at the rates of the bicycle twist, each rate imposed (as an
+electronic differential would; an open differential would share the torque instead):
 ``phi_RL = v (1 - kappa W/2) / r``, ``phi_RR = v (1 + kappa W/2) / r``, ``kappa = tan(delta)/L``.
 With ``"ackermann"`` every wheel can roll and the car follows the bicycle model exactly while it
 grips; the other two make the front wheels disagree with the rear axle, and the tyres scrub.
