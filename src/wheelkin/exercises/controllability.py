@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 from wheelkin import frames, nonholonomic
 from wheelkin.exercises import UNIT_FACTORS, Case, CheckResult, Exercise
 
-__all__ = ["PlanExercise", "parking_plan", "parking_pose", "unicycle_bracket", "wriggle"]
+__all__ = ["PlanExercise", "parking_plan", "parking_pose", "turn_bracket", "unicycle_bracket"]
 
 #: The 1/10 car of the sandbox at full lock: tan(0.4189 rad) / 0.33 m, 1/m.
 CAR_CURVATURE = math.tan(0.4189) / 0.33
@@ -77,9 +77,10 @@ Exercise(
 
 # ------------------------------------------------------------------ 2. the car's turn on the spot
 
-def wriggle(theta: float, steering: float, wheelbase: float) -> NDArray[np.float64]:
+def turn_bracket(theta: float, steering: float, wheelbase: float) -> NDArray[np.float64]:
     """[f1, f2] of the car's drive field f1 = (cos theta, sin theta, tan(delta)/L, 0) and
-    steer field f2 = (0, 0, 0, 1), at q = (x, y, theta, delta)."""
+    steer field f2 = (0, 0, 0, 1), at q = (x, y, theta, delta): the turn on the spot about
+    the rear-axle midpoint (Nelson's wriggle is the opposite, [f2, f1])."""
     def drive(q):
         return nonholonomic.car_fields(q, wheelbase)[:, 0]
 
@@ -88,6 +89,10 @@ def wriggle(theta: float, steering: float, wheelbase: float) -> NDArray[np.float
 
     bracket = nonholonomic.lie_bracket(drive, steer, [0.0, 0.0, theta, steering])
     return np.round(bracket, 12) + 0.0  # the finite difference's 1e-14 noise off the zeros
+
+
+def _nelsons_order(theta, steering, wheelbase):
+    return -turn_bracket(theta, steering, wheelbase)
 
 
 def _no_secant(theta, steering, wheelbase):
@@ -99,15 +104,18 @@ def _tangent_kept(theta, steering, wheelbase):
 
 
 Exercise(
-    "controllability.wriggle",
+    "controllability.turn_bracket",
     "The Lie bracket [f1, f2] of the car's drive field f1 = (cos theta, sin theta, "
     "tan(delta)/L, 0) and steer field f2 = (0, 0, 0, 1), at q = (x, y, theta, delta); "
     "wheelbase L (m).",
-    wriggle,
+    turn_bracket,
     [Case((0.3, 0.2, 0.33)), Case((1.0, -0.35, 2.5)), Case((-2.0, 0.6, 2.8)),
      Case((0.0, 0.0, 0.33))],
     wheel_names=("x", "y", "theta", "delta"),
     mistakes=[
+        (_nelsons_order, "that is [f2, f1] = -[f1, f2], Nelson's wriggle: the bracket is "
+                         "antisymmetric. With the book's convention the derivative of f2 "
+                         "along f1 comes first: D f2 f1 - D f1 f2."),
         (_no_secant, "the derivative of tan(delta) is 1/cos(delta)^2, not 1: only at "
                      "delta = 0 are they equal."),
         (_tangent_kept, "only the derivative of f1 with respect to delta enters (f2 points "
