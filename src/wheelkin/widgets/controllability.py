@@ -142,7 +142,8 @@ class ManoeuvreView:
         self.title = ax.set_title("", fontsize=10)
         bx.set_xscale("log")
         bx.set_yscale("log")
-        bx.set_xlim(*EPSILON_RANGE)
+        # A fifth beyond the largest move, so that its dot is drawn whole, not on the spine.
+        bx.set_xlim(EPSILON_RANGE[0], 1.2 * EPSILON_RANGE[1])
         bx.set_ylim(1e-9, 1.0)
         bx.set_xticks([0.01, 0.03, 0.1, 0.3], ["0.01", "0.03", "0.1", "0.3"])
         # Plain-text labels: mathtext ones (10^-9) cost most of a frame's drawing time.
