@@ -38,6 +38,8 @@ _GEOMETRY_NAMES = {"ackermann": "ideal Ackermann", "linkage": "trapezoidal linka
                    "parallel": "parallel steer"}
 _STEERED = "#d62728"
 _FIXED = "#555555"
+#: deg, the reach of the angle-error bars: parallel steer's inner wheel is 4.6° off at full lock
+_ERROR_LIMIT = 5.0
 
 
 def _wheel_outline(x, y, angle, length, width):
@@ -66,7 +68,9 @@ class SteeringView:
                               "RL": (0.0, CAR_W / 2), "RR": (0.0, -CAR_W / 2)}
             self.steered = ("FL", "FR")
             wheel_len = 2 * CAR_R
-            xlim, ylim = (-0.25, 0.6), (-0.35, 1.25)
+            # symmetric: the turning centre at full lock (0.74 m), and where parallel steer's
+            # outer axle line meets the rear one (0.88 m), in view on either side
+            xlim, ylim = (-0.25, 0.6), (-1.0, 1.0)
         else:
             g = rover.OSR_GEOMETRY
             d1, d2, d3, d4 = (v * units.INCH for v in (g.d1, g.d2, g.d3, g.d4))
@@ -74,7 +78,8 @@ class SteeringView:
                               "RB": (-d2, -d1), "LM": (0.0, d4), "RM": (0.0, -d4)}
             self.steered = ("LF", "RF", "LB", "RB")
             wheel_len = 0.12
-            xlim, ylim = (-0.45, 0.45), (-0.35, 1.25)
+            # symmetric: the turning centre at 45° (0.45 m) in view on either side
+            xlim, ylim = (-0.45, 0.45), (-0.8, 0.8)
         self.fig = fig
         gs = fig.add_gridspec(1, 2, width_ratios=(1.35, 1.0), wspace=0.45, left=0.1,
                               right=0.97, bottom=0.14, top=0.86)
@@ -109,11 +114,12 @@ class SteeringView:
         self.bars = bx.barh(np.arange(n), np.zeros(n), height=0.6, color=_STEERED)
         bx.set_yticks(np.arange(n), self.steered, fontsize=9)
         bx.invert_yaxis()
-        bx.set_xlim(-4, 4)
+        bx.set_xlim(-_ERROR_LIMIT, _ERROR_LIMIT)
         bx.axvline(0, color="k", lw=0.6)
         bx.set_xlabel("angle error (deg)")
-        self.bar_text = [bx.text(3.9, i, "", fontsize=9, va="center", ha="right")
-                         for i in range(n)]
+        # each value is written on the side away from its bar (update() moves it)
+        self.bar_text = [bx.text(-_ERROR_LIMIT + 0.1, i, "", fontsize=9, va="center",
+                                 ha="left") for i in range(n)]
         self.title = fig.suptitle("", fontsize=10, y=0.98)
 
     def angles(self, delta: float, geometry: str) -> dict[str, float]:
@@ -159,12 +165,22 @@ class SteeringView:
             self.centre = "straight ahead"
         else:
             self.icr.set_data([0.0], [radius])
-            self.centre = f"turning centre at y = {radius:.2f} m"
+            # Only ideal geometry has one turning centre; otherwise the dot is the centre the
+            # rear wheels impose, the bicycle's.
+            whose = "" if geometry == "ackermann" else "bicycle's "
+            self.centre = f"{whose}turning centre at y = {radius:.2f} m"
             if self.vehicle != "car":  # the rover's chapter works in inches
                 self.centre += f" ({radius / 0.0254:.1f} in)"
         for bar, text, e in zip(self.bars, self.bar_text, errors, strict=True):
-            bar.set_width(max(-4.0, min(4.0, e)))
-            text.set_text(f"{round(e, 2) + 0.0:+.2f}°")  # never "-0.00°"
+            bar.set_width(max(-_ERROR_LIMIT, min(_ERROR_LIMIT, e)))
+            shown = round(e, 2) + 0.0  # never "-0.00°"
+            text.set_text(f"{shown:+.2f}°")
+            if shown > 0:  # a bar to the right: its value at the left end of the axis
+                text.set_x(-_ERROR_LIMIT + 0.1)
+                text.set_horizontalalignment("left")
+            else:
+                text.set_x(_ERROR_LIMIT - 0.1)
+                text.set_horizontalalignment("right")
         label = _GEOMETRY_NAMES[geometry] if self.vehicle == "car" else "OSR four corners"
         self.title.set_text(f"{label}, steering {delta_deg:+.1f}°: {self.centre}")
 
@@ -230,7 +246,7 @@ class PursuitView:
         ax = self.ax = fig.add_subplot(1, 1, 1)
         fig.subplots_adjust(left=0.12, right=0.97, bottom=0.13, top=0.9)
         ax.set_xlim(-0.3, 1.6)
-        ax.set_ylim(-0.9, 0.9)
+        ax.set_ylim(-1.05, 1.05)  # the look-ahead point of the sweep (at most 0.92 m) in view
         ax.set_aspect("equal")
         ax.set_xlabel("x, forward (m)")
         ax.set_ylabel("y, left (m)")
@@ -247,7 +263,11 @@ class PursuitView:
         self.chord = ax.plot([], [], color="#888888", lw=0.8, ls=":", zorder=2)[0]
         self.goal = ax.plot([], [], marker="*", ms=12, color="#ff7f0e", ls="none",
                             zorder=5)[0]
-        self.text = ax.text(0.02, 0.97, "", transform=ax.transAxes, va="top", fontsize=9,
+        # The numbers beside the view, clear of the arc and the star at every bearing: the
+        # view keeps to the left of the figure.
+        ax.set_anchor("W")
+        self.text = ax.text(1.04, 0.97, "", transform=ax.transAxes, va="top", ha="left",
+                            fontsize=9,
                             bbox={"fc": "white", "ec": "none", "alpha": 0.85, "pad": 1})
         self.title = ax.set_title("", fontsize=10)
 
