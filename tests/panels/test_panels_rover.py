@@ -41,3 +41,23 @@ def test_sweep_animation_renders_every_frame():
 
     html = to_html(rw.sweep_animation(frames=5), name="test-rover-sweep", alt="sweep")
     assert len(re.findall(r"frames\[\d+\]", html)) == 5
+
+
+def test_corner_angles_never_print_a_negative_zero():
+    """Driving straight, every corner is at zero: its label reads +0.0°, never −0.0°; a turn
+    still prints the sign of each corner (the book's delta, left positive)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from wheelkin.style import fixed_layout
+    from wheelkin.widgets.rover import RoverView
+
+    view = RoverView(Figure(layout=fixed_layout()))
+    view.update(0.0, 100.0)
+    corners = [view.labels[i].get_text() for i in (0, 2, 3, 5)]
+    assert all("+0.0°" in t and "−0.0" not in t for t in corners), corners
+    view.update(100.0, 100.0)  # a right turn: front corners steer right (−), back ones left
+    corners = [view.labels[i].get_text() for i in (0, 2, 3, 5)]
+    assert sum("−" in t for t in corners) == 2 and sum("+" in t for t in corners) == 2, corners

@@ -157,7 +157,8 @@ class RoverView:
         for i, patch in enumerate(self.wheels):
             patch.set_xy(self._wheel_outline(i, steer[i]))
         for i in _CORNER_OF_WHEEL:
-            angle = f"{math.degrees(steer[i]):+.1f}°".replace("-", "−")
+            shown = round(math.degrees(steer[i]), 1) + 0.0  # never "−0.0°"
+            angle = f"{shown:+.1f}°".replace("-", "−")
             self.labels[i].set_text(f"{angle} {i + 1}" if i < 3 else f"{i + 1} {angle}")
         scr = _screen(self.pos)
         if straight:
