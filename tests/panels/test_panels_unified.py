@@ -41,3 +41,41 @@ def test_constraint_view_marks_exactly_the_wheels_that_must_slide():
                      if c == SLIP_COLOUR]
     assert red == {"differential drive": ["L", "R"], "skid steer": ["FL", "FR", "RL", "RR"],
                    "mecanum": [], "rover": ["LM", "RM"]}
+
+
+def test_the_tour_never_shows_a_twist_twice():
+    """Consecutive frames differ (the spin starts one step after the turn ends), and the tour
+    still ends on the spin asked for."""
+    from wheelkin.widgets import unified as panels
+
+    for frames in (8, 32, 40):
+        twists = panels.tour_twists(frames)
+        steps = np.abs(np.diff(twists, axis=0)).max(axis=1)
+        assert steps.min() > 0, frames
+
+
+def test_contact_arrows_start_at_the_wheel_edge():
+    """A spinning differential drive's slow contact points (1.5 rad/s x 43 mm) are drawn from
+    the edge of each wheel's outline (half-length = wheel radius), forward on the right wheel,
+    backward on the left: outside the wheel, each pointing its own way."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from wheelkin.widgets.unified import ConstraintView
+
+    view = ConstraintView(Figure(layout="none"), arrow_speeds={"differential drive": 0.4})
+    view.update(0.0, 0.0, 1.5)
+    item = view.items[0]
+    spec = item["spec"]
+    bases = item["velocity"].get_offsets()
+    for wheel, base, u in zip(spec.wheels, bases, item["velocity"].U, strict=True):
+        x, y = wheel.position
+        # the contact velocity is -omega y along x; the base lies one wheel radius that way
+        assert np.sign(u) == np.sign(-1.5 * y)
+        assert base[0] == pytest.approx(x + np.sign(-y) * wheel.wheel_radius)
+        assert base[1] == pytest.approx(y)
+    assert item["scale"] == pytest.approx(0.8 * 0.061 / 0.4, rel=0.02)
+    with pytest.raises(ValueError, match="arrow_speeds"):
+        ConstraintView(Figure(layout="none"), arrow_speeds={"rover": 0.0})

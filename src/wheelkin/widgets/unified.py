@@ -53,6 +53,23 @@ VELOCITY_COLOUR = "#1f77b4"
 SLIP_FLOOR = 1e-9
 
 
+def _to_the_edge(wheels, vectors: np.ndarray) -> np.ndarray:
+    """From each wheel's centre to the edge of its drawn outline (the sandbox's: half-length
+    the wheel radius, half-width 0.3 of it) in the direction of its vector (zero for a zero
+    vector)."""
+    out = np.zeros_like(vectors, dtype=float)
+    for k, (w, v) in enumerate(zip(wheels, vectors, strict=True)):
+        size = math.hypot(*v)
+        if size == 0.0:
+            continue
+        u = np.asarray(v, dtype=float) / size
+        along = abs(float(u @ w.rolling_direction))
+        across = abs(float(u @ w.lateral_direction))
+        r = w.wheel_radius
+        out[k] = u * min(r / max(along, 1e-12), 0.3 * r / max(across, 1e-12))
+    return out
+
+
 def _reach(spec) -> float:
     return max(max(math.hypot(*p) for p in spec.body),
                max(math.hypot(*w.position) + w.wheel_radius for w in spec.wheels))
@@ -69,11 +86,27 @@ class ConstraintView:
         Default :data:`VEHICLES`.
     columns : int
         Axes per row (default 2: four vehicles in a 2 x 2 grid that fits the text column).
+    arrow_speeds : dict of str to float, optional
+        m/s, per vehicle: the speed drawn as an arrow ``arrow_reach`` of the vehicle's reach
+        long (default 0.5 m/s for every vehicle).
+    arrow_reach : float
+        The length of an arrow of the vehicle's ``arrow_speeds``, as a fraction of its reach
+        (default 0.8).
+
+    Each blue arrow starts at the edge of its wheel's outline, in the direction it points, so
+    that a slow contact point still shows which way it moves.
     """
 
-    def __init__(self, fig: Figure, vehicles: dict | None = None, columns: int = 2) -> None:
+    def __init__(self, fig: Figure, vehicles: dict | None = None, columns: int = 2,
+                 arrow_speeds: dict[str, float] | None = None, arrow_reach: float = 0.8
+                 ) -> None:
         if isinstance(columns, bool) or not isinstance(columns, int) or columns < 1:
             raise ValueError(f"columns must be a positive integer, got {columns!r}")
+        arrow_speeds = dict(arrow_speeds or {})
+        for name, speed in arrow_speeds.items():
+            if not (isinstance(speed, (int, float)) and math.isfinite(speed) and speed > 0):
+                raise ValueError(f"arrow_speeds[{name!r}] must be a speed > 0 (m/s), "
+                                 f"got {speed!r}")
         self.vehicles = dict(VEHICLES if vehicles is None else vehicles)
         self.fig = fig
         n = len(self.vehicles)
@@ -106,11 +139,13 @@ class ConstraintView:
             text = ax.text(0.02, 0.03, "", transform=ax.transAxes, ha="left", va="bottom",
                            fontsize=9, bbox={"facecolor": "white", "edgecolor": "none",
                                              "alpha": 0.85})
-            # arrows: 0.5 m/s drawn as 0.8 of the vehicle's reach
+            # arrows: arrow_speed (0.5 m/s unless given) drawn arrow_reach of the vehicle's reach
+            arrow_speed = float(arrow_speeds.get(name, 0.5))
             self.axes.append(ax)
             self.items.append({"spec": spec, "wheels": wheels, "drawing": drawing,
                                "velocity": velocity, "slide": slide, "text": text,
-                               "points": points, "scale": 0.8 * reach / 0.5, "lim": lim})
+                               "points": points, "scale": arrow_reach * reach / arrow_speed,
+                               "lim": lim})
         self.fit(left=0.01, right=0.99, bottom=0.01, top=0.94, wspace=0.03, hspace=0.14)
 
     def fit(self, **adjust: float) -> None:
@@ -165,6 +200,7 @@ class ConstraintView:
             item["drawing"].update((0.0, 0.0, 0.0), steering, twist,
                                    slips[np.array(driven)])
             scale = item["scale"]
+            item["velocity"].set_offsets(pts + _to_the_edge(wheels, vel))
             item["velocity"].set_UVC(vel[:, 0] * scale, vel[:, 1] * scale)
             item["slide"].set_UVC(lateral[:, 0] * scale, lateral[:, 1] * scale)
             worst = float(np.max(np.abs(residual)))
@@ -219,23 +255,33 @@ def tour_twists(frames: int = 48) -> np.ndarray:
     angle = np.linspace(0.0, 2 * math.pi, n1, endpoint=False)
     strafe = np.column_stack([0.3 * np.cos(angle), 0.3 * np.sin(angle), np.zeros(n1)])
     turn = np.column_stack([np.full(n2, 0.3), np.zeros(n2), np.linspace(0.0, 1.5, n2)])
-    spin = np.column_stack([np.linspace(0.3, 0.0, n3), np.zeros(n3), np.full(n3, 1.5)])
+    # the spin starts one step after the turn's last twist: no frame is shown twice
+    spin = np.column_stack([np.linspace(0.3, 0.0, n3 + 1)[1:], np.zeros(n3), np.full(n3, 1.5)])
     return np.vstack([strafe, turn, spin])
 
 
 def twist_tour_animation(frames: int = 32, figsize: tuple[float, float] = (6.7, 4.8), dpi: int = 100
                          ) -> SandboxAnimation:
     """The :class:`ConstraintView` while the twist tours :func:`tour_twists`, steered wheels
-    steered; display with :func:`wheelkin.animation.show`."""
+    steered; display with :func:`wheelkin.animation.show`. Each panel has its own arrow scale:
+    the fastest contact point of its vehicle over the tour is drawn 0.7 of its reach long, which
+    keeps every arrow in its panel."""
     twists = tour_twists(frames)
     fig = Figure(figsize=figsize, dpi=dpi, layout=fixed_layout())
-    view = ConstraintView(fig)
+    fastest = {}
+    for name, spec in VEHICLES.items():
+        points = np.array([w.position for w in spec.wheels])
+        fastest[name] = float(max(
+            np.hypot(vx - w * points[:, 1], vy + w * points[:, 0]).max()
+            for vx, vy, w in twists))
+    view = ConstraintView(fig, arrow_speeds=fastest, arrow_reach=0.7)
     view.fit(left=0.01, right=0.99, bottom=0.01, top=0.85, wspace=0.03, hspace=0.14)
     stamp = fig.text(0.5, 0.985, "", ha="center", va="top", fontsize=10)
 
     def update(f: int):
         vx, vy, w = twists[f]
         view.update(vx, vy, w, True)
+        vx, vy, w = (round(float(c), 2) + 0.0 for c in (vx, vy, w))  # never "-0.00"
         stamp.set_text(f"asked: vx = {vx:+.2f} m/s, vy = {vy:+.2f} m/s, ω = {w:+.2f} rad/s")
         return []
 
