@@ -70,3 +70,27 @@ def test_wheel_speed_view_holds_the_fastest_wheel_of_its_sliders():
             tip = arrow.get_xy()[:, 1]
             assert bottom < tip.min() and tip.max() < top, (v, w, tip.min(), tip.max())
     assert round(fastest) == 4051
+
+
+def test_a_slow_wheels_arrow_is_not_hidden_under_its_wheel():
+    """At v = 1000 steps/s, omega = 4500 mrad/s the left wheel turns backwards at
+    1000 - 4.5 x 42.5 x 8.043 = -538 steps/s (by hand): a 13 mm arrow, shorter than the
+    36 mm wheel. Each arrow stands beside its wheel, so no part of it lies under the wheel
+    (drawn above it), and it points the way the wheel turns."""
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Rectangle
+
+    from wheelkin.widgets.diffdrive import DiffDriveView
+
+    view = DiffDriveView(Figure())
+    view.update(1000, 4500)
+    wheels = sorted((p for p in view.ax.patches if isinstance(p, Rectangle)
+                     and p.get_height() == 36), key=lambda p: p.get_x())
+    assert len(wheels) == 2
+    for arrow, wheel, sign in zip(view.arrows, wheels, (-1, 1), strict=True):
+        xs = arrow.get_xy()[:, 0]
+        x0, x1 = wheel.get_x(), wheel.get_x() + wheel.get_width()
+        assert xs.max() < x0 or xs.min() > x1, (xs.min(), xs.max(), x0, x1)
+        assert sign * (xs.mean() - (x0 + x1) / 2) > 0  # outboard
+    left_tip = float(view.arrows[0].get_xy()[:, 1].min())
+    assert abs(left_tip - (-538 * 0.025)) < 0.5

@@ -1,7 +1,7 @@
 """The differential-drive chapter's live panels and their kernel-free twin (notebooks/05_diffdrive).
 
 :class:`DiffDriveView` draws the Radon Ulzer from above (forward up the page, its right to the
-right of the page, millimetres) with an arrow per wheel for its speed, the turning centre
+right of the page, millimetres) with an arrow beside each wheel for its speed, the turning centre
 (ICR), and bars of the left and right wheel speeds as three computations give them: the
 correct formula, the firmware README's formula as printed, and the firmware's 32-bit integer
 computation. ``update(v_steps_per_s, omega_mrad_per_s)`` moves the artists in place.
@@ -31,6 +31,9 @@ __all__ = ["DiffDriveView", "SpeedometerView", "speedometer_panel", "sweep_anima
 W_MM = dd.RADON_ULZER_CONSTANTS.track_width_mm
 ENC = dd.RADON_ULZER_CONSTANTS.steps_per_m
 ARROW_MM_PER_STEP_PER_S = 0.025    # arrow length per wheel speed (mm per step/s)
+#: The arrows stand beside the wheels, outboard, from the axle line: a slow wheel's short
+#: arrow is never hidden under its wheel (10 mm wide; the arrow head is 9 mm wide).
+ARROW_OFFSET_MM = 13.0
 _LEFT_COLOUR, _RIGHT_COLOUR = "#1f77b4", "#d62728"
 _XLIM = (-140.0, 140.0)            # page x: the robot's right (mm)
 _YLIM = (-110.0, 150.0)            # page y: forward (mm)
@@ -78,9 +81,9 @@ class DiffDriveView:
             ax.add_patch(Rectangle((x - 5, -18), 10, 36, fc=colour, ec="k", lw=0.8, zorder=3))
         ax.plot([-half, half], [0, 0], color="k", lw=0.8, zorder=4)
         ax.plot([0], [0], marker="+", color="k", ms=8, zorder=5)
-        # wheel names outside the wheels, clear of the README ticks at the wheel x
-        ax.text(-half - 16, -12, "L", ha="right", va="center", fontsize=8)
-        ax.text(half + 16, -12, "R", ha="left", va="center", fontsize=8)
+        # wheel names under the wheels, clear of the arrows and ticks beside them
+        ax.text(-half, -22, "L", ha="center", va="top", fontsize=8)
+        ax.text(half, -22, "R", ha="center", va="top", fontsize=8)
         self.icr = ax.plot([], [], marker="o", color="k", ms=5, ls="none", zorder=6)[0]
         self.icr_text = ax.text(0.02, 0.02, "", transform=ax.transAxes, fontsize=8,
                                 va="bottom")
@@ -91,8 +94,8 @@ class DiffDriveView:
                                va="center", color="#b35900", fontsize=9, zorder=10)
         # The wheel-speed arrows: made once, moved by update() (after the ICR marker, so
         # they are drawn over it).
-        self.arrows = [self._arrow(-half, 0.0, _LEFT_COLOUR),
-                       self._arrow(half, 0.0, _RIGHT_COLOUR)]
+        self.arrows = [self._arrow(-half - ARROW_OFFSET_MM, 0.0, _LEFT_COLOUR),
+                       self._arrow(half + ARROW_OFFSET_MM, 0.0, _RIGHT_COLOUR)]
         # Bars: three computations x (left, right).
         y = np.arange(len(_ROWS))
         self.left_bars = bx.barh(y + 0.15, np.zeros(3), height=0.28, color=_LEFT_COLOUR,
@@ -152,8 +155,9 @@ class DiffDriveView:
         half = self.base / 2
         self._move_arrow(self.arrows[0], left)
         self._move_arrow(self.arrows[1], right)
-        self.printed_marks.set_data([-half, half], [p_left * ARROW_MM_PER_STEP_PER_S,
-                                                    p_right * ARROW_MM_PER_STEP_PER_S])
+        beside = half + ARROW_OFFSET_MM
+        self.printed_marks.set_data([-beside, beside], [p_left * ARROW_MM_PER_STEP_PER_S,
+                                                        p_right * ARROW_MM_PER_STEP_PER_S])
         # ICR on the axle line, R = v / omega (mm), positive to the left (page -x).
         if omega != 0:
             radius_mm = v * 1e6 / (self.enc * omega)
