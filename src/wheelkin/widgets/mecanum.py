@@ -27,6 +27,7 @@ from matplotlib.patches import Polygon
 from matplotlib.ticker import MaxNLocator
 from numpy.typing import ArrayLike, NDArray
 
+from wheelkin import _validate as V
 from wheelkin import frames
 from wheelkin.mecanum import (
     DOCUMENT_MAX_SPEED,
@@ -194,7 +195,8 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan: ArrayLi
                   title: str | None = None, texts: Sequence[str] | None = None,
                   limits: tuple[tuple[float, float], tuple[float, float]] | None = None,
                   slipping: ArrayLike | None = None, figsize: tuple[float, float] = (6.7, 4.2),
-                  dpi: int = 100) -> SandboxAnimation:
+                  dpi: int = 100, legend: str = "upper right",
+                  interval: float = 100.0) -> SandboxAnimation:
     """A kernel-free animation of the vehicle moving through ``poses`` (N, 3).
 
     The axes are drawn once and each frame only redraws the moving artists
@@ -204,8 +206,13 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan: ArrayLi
     ``plan`` (M, 2): drawn dashed, labelled ``plan_label`` (e.g. the predicted path); the
     vehicle's own trail is labelled ``path_label``. ``extra_paths``: {label: (N, 2)}
     drawn progressively with the vehicle (e.g. the sandbox's path). ``texts``: one caption
-    string per frame (optional). ``limits``: ((xmin, xmax), (ymin, ymax)).
+    string per frame (optional). ``limits``: ((xmin, xmax), (ymin, ymax)). ``legend``:
+    "upper right" (inside the axes) or "outside" (right of the axes, never over the vehicle).
+    ``interval``: ms between frames, in [1, 60000] (real time: the run's duration over the
+    frames).
     """
+    V.choice("legend", legend, ("upper right", "outside"))
+    interval = V.in_range("interval", interval, 1.0, 60_000.0)
     poses = np.asarray(poses, dtype=float)
     idx = np.linspace(0, len(poses) - 1, frames_count).round().astype(int)
     fig, ax = plt.subplots(figsize=figsize, dpi=dpi, layout=fixed_layout())
@@ -234,7 +241,9 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan: ArrayLi
     for i, (label, _) in enumerate(extra.items()):
         (extra_lines[label],) = ax.plot([], [], f"C{i + 1}-", lw=1.5, label=label)
     car = draw_mecanum(ax, geometry, poses[0])
-    if plan is not None or extra:
+    if (plan is not None or extra) and legend == "outside":
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
+    elif plan is not None or extra:
         ax.legend(loc="upper right", fontsize=8)
     if title:
         ax.set_title(title, fontsize=10, loc="left")
@@ -254,7 +263,7 @@ def animate_poses(geometry: MecanumGeometry, poses: np.ndarray, *, plan: ArrayLi
         return []
 
     dynamic = [*car.artists, trail, *extra_lines.values(), label]
-    return SandboxAnimation(fig, update, frames=frames_count, interval=100, blit=False,
+    return SandboxAnimation(fig, update, frames=frames_count, interval=interval, blit=False,
                             dynamic=dynamic)
 
 
