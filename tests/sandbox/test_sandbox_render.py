@@ -142,6 +142,36 @@ def test_animation_inputs_are_checked(two_runs):
         animate(two_runs[0], RADON_ULZER, extra_paths={"bad": [1, 2, 3]})
     with pytest.raises(ValueError, match="colors"):
         animate(two_runs[0], RADON_ULZER, colors=1000)
+    with pytest.raises(ValueError, match="legend must be one of"):
+        animate(two_runs[0], RADON_ULZER, plan=[(0, 0), (1, 0)], legend="top")
+    for bad in (0.0, -1.0, 1.5, math.nan):  # the run lasts 1 s
+        with pytest.raises(ValueError, match="until"):
+            animate(two_runs[0], RADON_ULZER, until=bad)
+
+
+def test_an_outside_legend_lies_right_of_the_axes_and_covers_nothing(two_runs):
+    anim = animate(two_runs[0], RADON_ULZER, frames=3, plan=[(0, 0), (0.2, 0.2)],
+                   legend="outside")
+    to_html(anim, name="test-outside", alt="a robot turning")
+    fig = anim._fig
+    ax = fig.axes[0]
+    box = ax.get_legend().get_window_extent()
+    assert box.x0 > ax.get_window_extent().x1
+    assert box.x1 <= fig.bbox.x1
+
+
+def test_until_ends_the_frames_at_that_time(two_runs):
+    # 5 frames over 0..0.5 s of a 1 s run: the last shows t = 0.50 s and the vehicle there.
+    anim = animate(two_runs[0], RADON_ULZER, frames=5, until=0.5)
+    to_html(anim, name="test-until", alt="a robot turning")  # ends on the last frame
+    stamp = next(t for t in anim._fig.axes[0].texts if t.get_text().startswith("t ="))
+    assert stamp.get_text() == "t =  0.50 s"
+    run = two_runs[0]
+    i = int(np.searchsorted(run.t, 0.5 - 1e-12))
+    point = anim._fig.axes[0].lines
+    xs = [line.get_xdata() for line in point if len(line.get_xdata()) == 1
+          and line.get_marker() == "o"]
+    assert xs and math.isclose(float(xs[0][0]), run.pose[i, 0])
 
 
 def test_slip_panel_redraws_at_every_slider_extreme_without_raising():

@@ -59,6 +59,11 @@ ICR_COLOUR = "#7f7f7f"
 FIGSIZE_RANGE = (1.0, 20.0)
 DPI_RANGE = (10.0, 600.0)
 INTERVAL_RANGE = (1.0, 60_000.0)
+#: Where an animation's legend may go: a corner or edge inside the axes (not the upper left,
+#: where the clock is), or "outside" (to the right of the axes, so that it never covers a
+#: vehicle).
+LEGEND_PLACES = ("lower right", "lower left", "upper right", "upper center", "lower center",
+                 "center left", "center right", "outside")
 
 
 def _flag(name: str, value) -> bool:
@@ -457,6 +462,8 @@ def animate(
     interval: float | None = None,
     limits: ArrayLike | None = None,
     colors: int | None = None,
+    legend: str = "lower right",
+    until: float | None = None,
 ) -> SandboxAnimation:
     """Animate recorded trajectories top-down.
 
@@ -475,7 +482,7 @@ def animate(
         Further paths (e.g. an odometry estimate) drawn progressively with the animation
         (a path's points are spread evenly over the animation's duration).
     frames : int
-        Number of frames (2..400), spread evenly over the trajectory.
+        Number of frames (2..400), spread evenly over the trajectory (up to ``until``).
     trail : bool
         Draw the path travelled so far.
     title : str, optional
@@ -492,6 +499,13 @@ def animate(
     colors : int or None
         Palette size of the frames ``to_jshtml`` embeds (2..256), or None for full colour
         (``wheelkin.animation.to_html`` re-encodes them with a palette anyway).
+    legend : str
+        Where the legend goes (one of :data:`LEGEND_PLACES`): a place inside the axes where no
+        vehicle drives, or "outside" (to the right of the axes, which shrink to make room).
+    until : float, optional
+        Last time shown, s, in (0, end of the longest trajectory] (default: that end), e.g.
+        the moment a lap is finished; ``extra_paths`` are then spread over 0..until, so pass
+        only their points up to that time.
 
     Returns
     -------
@@ -541,6 +555,13 @@ def animate(
         raise ValueError(f"names must give one label per trajectory ({len(trajs)})")
 
     t_end = max(float(tr.t[-1]) for tr in trajs)
+    if until is not None:
+        last = V.finite("until", until)
+        if not 0.0 < last <= t_end:
+            raise ValueError(f"until must be in (0, {t_end:g}] s (the end of the longest "
+                             f"trajectory), got {until!r}")
+        t_end = last
+    legend = V.choice("legend", legend, LEGEND_PLACES)
     times = np.linspace(0.0, t_end, frames)
     picks = [np.clip(np.searchsorted(tr.t, times - 1e-12), 0, len(tr) - 1) for tr in trajs]
     if interval is None:
@@ -605,7 +626,11 @@ def animate(
                     bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8,
                           "boxstyle": "square,pad=0.2"})  # clear of the spine and ticks
     if any(names) or extras or plan_arr is not None:
-        ax.legend(loc="lower right", fontsize=8, framealpha=0.8)
+        if legend == "outside":
+            ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+                      fontsize=8, framealpha=0.8)
+        else:
+            ax.legend(loc=legend, fontsize=8, framealpha=0.8)
     fig.tight_layout()
 
     def update(f: int):
