@@ -328,8 +328,12 @@ def strong_stability_margin(k_rho: float, k_alpha: float, k_beta: float) -> floa
     :cite:t:`siegwart2011` (section 3.6.2.4) state that with :math:`k_\rho > 0`,
     :math:`k_\beta < 0` and :math:`m > 0` the robot that starts facing the goal
     (:math:`|\alpha| \le \pi/2`) keeps facing it, so it never has to reverse its direction
-    of travel. A sufficient condition, stricter than :math:`k_\alpha - k_\rho > 0` (the
-    local stability of :func:`move_to_pose`); the chapter tests it on a grid of starts.
+    of travel. As stated it is not sufficient: at :math:`|\alpha| = \pi/2` the bearing's
+    rate points inwards for every :math:`\beta_g \in (-\pi, \pi]` only if
+    :math:`k_\alpha + 2k_\beta - \tfrac{2}{\pi}k_\rho > 0` (the factor 5/3 covers
+    :math:`|\beta_g| \le 5\pi/6` only). The chapter derives that condition and drives, on a
+    grid of starts, gains such as (3, 7.5, -3) that meet Siegwart's margin and still turn
+    some starts away. This function reports Siegwart's margin as published.
 
     Parameters
     ----------
