@@ -143,8 +143,15 @@ def _first_only(k_rho, k_alpha, k_beta):
     return 0.0 if k_alpha > 3.0 * k_rho else 1.0
 
 
+def _facing_margin(k_rho: float, k_alpha: float, k_beta: float) -> float:
+    """k_alpha + 2 k_beta - 2 k_rho/pi (1/s): positive (with k_beta < 0), a robot that starts
+    facing the goal keeps facing it (alpha-dot points inwards at |alpha| = pi/2 for every
+    beta_g); Siegwart's k_alpha + 5/3 k_beta - 2 k_rho/pi > 0 does not suffice."""
+    return k_alpha + 2.0 * k_beta - 2.0 / math.pi * k_rho
+
+
 def _margin_rule(k_rho, k_alpha, k_beta):
-    return 0.0 if control.strong_stability_margin(k_rho, k_alpha, k_beta) > 0 else 1.0
+    return 0.0 if _facing_margin(k_rho, k_alpha, k_beta) > 0 else 1.0
 
 
 Exercise(
@@ -157,8 +164,8 @@ Exercise(
     mistakes=[
         (_first_only, "k_alpha > 3 k_rho puts the roots' mean left of -k_rho, but one root "
                       "can still lie right of it: also k_alpha + k_beta < 2 k_rho."),
-        (_margin_rule, "Siegwart's strong-stability margin says whether the robot keeps "
-                       "facing the goal, not whether the angles shrink faster than the "
+        (_margin_rule, "the margin k_alpha + 2 k_beta - 2 k_rho/pi says whether the robot "
+                       "keeps facing the goal, not whether the angles shrink faster than the "
                        "distance."),
     ],
 )
@@ -178,8 +185,8 @@ PARK_TIME, PARK_PERIOD, PARK_SPEED = 15.0, 0.02, 0.3
 def parking_gains(camera_noise: float) -> tuple[float, float, float, float]:
     """Design: (k_rho, k_alpha, k_beta, stop_distance) that park the Zumo when the camera's
     position noise is ``camera_noise`` (m, its heading noise 0.2 degrees): Siegwart's gains,
-    whose strong-stability margin keeps every start facing the bay, and a stop distance five
-    times the noise."""
+    whose margin k_alpha + 2 k_beta - 2 k_rho/pi > 0 keeps every start facing the bay, and a
+    stop distance five times the noise."""
     return (3.0, 8.0, -1.5, 5.0 * camera_noise)
 
 
@@ -254,12 +261,13 @@ class ParkingExercise(Exercise):
             return self._fail("specific", f"{head}: the controller refuses: {exc}")
         if np.any(result["turned"]):
             k = int(np.argmax(result["turned"]))
-            margin = control.strong_stability_margin(*gains[:3])
+            margin = _facing_margin(*gains[:3])
             return self._fail("specific", f"{head}: the start {_fmt(PARK_STARTS[k])} turns its "
                               f"back on the bay (bearing up to "
-                              f"{math.degrees(result['worst_alpha'][k]):.0f}°): Siegwart's "
-                              f"margin k_alpha + 5 k_beta/3 - 2 k_rho/pi is {margin:.2f}, it "
-                              "must be positive.")
+                              f"{math.degrees(result['worst_alpha'][k]):.0f}°): the margin "
+                              f"k_alpha + 2 k_beta - 2 k_rho/pi is {margin:.2f}, make it "
+                              "positive (Siegwart's k_alpha + 5 k_beta/3 - 2 k_rho/pi > 0 is "
+                              "not enough).")
         far = result["distance"] >= 0.01
         if np.any(far):
             k = int(np.argmax(far))
