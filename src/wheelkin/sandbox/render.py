@@ -48,7 +48,8 @@ from wheelkin.style import fixed_layout
 from .vehicles import VehicleSpec
 from .world import MAX_COORDINATE, MAX_SPEED, MAX_YAW_RATE, Trajectory
 
-__all__ = ["PALETTE", "SandboxAnimation", "VehicleDrawing", "animate", "draw_vehicle"]
+__all__ = ["LEGEND_PLACES", "PALETTE", "SandboxAnimation", "VehicleDrawing", "animate",
+           "draw_vehicle"]
 
 #: Colours of successive vehicles in one animation.
 PALETTE = ("#1f77b4", "#ff7f0e", "#2ca02c", "#9467bd", "#8c564b")
