@@ -131,10 +131,10 @@ Exercise(
 # ------------------------------------------------------------------ 3. judgement: the car
 
 def fails_on_car(k_rho: float, k_alpha: float, k_beta: float) -> float:
-    """1.0 if a car driven by the pose controller with these (stable) gains asks for a
-    curvature that grows without bound near the goal (its steering saturates at the end),
-    0.0 if the demand fades: it fades when both angle roots lie left of -k_rho,
-    k_alpha > 3 k_rho and k_alpha + k_beta < 2 k_rho."""
+    """0.0 if the curvature a car driven by the pose controller with these (stable) gains
+    asks for fades near the goal, 1.0 if it does not (it then grows without bound, and the
+    steering saturates at the end, unless an angle root lies exactly at -k_rho): it fades
+    when both angle roots lie left of -k_rho, k_alpha > 3 k_rho and k_alpha + k_beta < 2 k_rho."""
     fades = k_alpha > 3.0 * k_rho and k_alpha + k_beta < 2.0 * k_rho
     return 0.0 if fades else 1.0
 
@@ -156,8 +156,8 @@ def _margin_rule(k_rho, k_alpha, k_beta):
 
 Exercise(
     "control.fails_on_car",
-    "Judge: 1.0 if the car's curvature demand grows near the goal with the pose gains "
-    "(k_rho, k_alpha, k_beta), 0.0 if it fades.",
+    "Judge: 0.0 if the car's curvature demand fades near the goal with the pose gains "
+    "(k_rho, k_alpha, k_beta), 1.0 if it does not.",
     fails_on_car,
     [Case((3.0, 8.0, -3.0)), Case((1.0, 5.0, -4.0)), Case((3.0, 8.0, -1.5)),
      Case((0.5, 4.0, -3.4)), Case((1.0, 4.0, -1.0)), Case((1.0, 8.0, -9.0))],
